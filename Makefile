@@ -1,0 +1,40 @@
+# subfab: the two commands of the README, and what they need.
+#   make run   set up, build (Release), run the main job on a bundled example
+#   make test  set up, build, run the whole test suite (ctest), then the mesh
+#              reader tests again under AddressSanitizer + UBSan
+SHELL := /bin/bash
+BUILD_DIR ?= build
+ASAN_DIR ?= build-asan
+JOBS ?= $(shell nproc)
+EXAMPLE ?= data/fandisk.obj
+OUT ?= out/example
+
+.PHONY: all setup configure build run test test-fast test-asan bench clean
+
+all: build
+
+setup:
+	@bash scripts/setup.sh
+
+configure: setup
+	@cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=Release >/dev/null
+
+build: configure
+	@cmake --build $(BUILD_DIR) -j $(JOBS)
+
+run: build
+	@./$(BUILD_DIR)/subfab info $(EXAMPLE)
+
+test-fast: build
+	@ctest --test-dir $(BUILD_DIR) --output-on-failure -j $(JOBS)
+
+test-asan: setup
+	@cmake -S . -B $(ASAN_DIR) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSUBFAB_IO_ONLY=ON -DSUBFAB_SANITIZE=ON >/dev/null
+	@cmake --build $(ASAN_DIR) -j $(JOBS)
+	@ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+		ctest --test-dir $(ASAN_DIR) --output-on-failure -j $(JOBS)
+
+test: test-fast test-asan
+
+clean:
+	rm -rf $(BUILD_DIR) $(ASAN_DIR) out
