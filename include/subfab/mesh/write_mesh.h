@@ -1,0 +1,18 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file write_mesh.h
+//! Writing triangle meshes: OBJ, OFF (text, full double precision), binary
+//! little-endian PLY, binary STL (float32, as the format requires).
+#pragma once
+
+#include <filesystem>
+
+#include "subfab/mesh/mesh.h"
+
+namespace subfab {
+
+//! Writes `mesh`; the format is chosen by the extension (.obj .off .ply .stl).
+//! Text formats keep every double exactly (17 significant digits).
+//! \throw IoError when the file cannot be written or the extension is unknown.
+void write_mesh(const Mesh& mesh, const std::filesystem::path& path);
+
+}  // namespace subfab
