@@ -1,0 +1,67 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "subfab/mesh/write_mesh.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "subfab/core/error.h"
+#include "subfab/mesh/read_mesh.h"
+#include "test_support.h"
+
+namespace subfab {
+namespace {
+
+//! A mesh whose coordinates need all 17 digits (and a negative zero, a
+//! denormal and a huge value) to test exactness of the text writers.
+Mesh awkward_mesh() {
+  const Mesh knight = read_mesh(test::data_path("decimated_knight.off"));
+  Mesh mesh = knight;
+  mesh.vertices[0] = Vec3(0.1 + 0.2, -1.0 / 3.0, 1e-310);
+  mesh.vertices[1] = Vec3(-0.0, 123456789.123456789, 1.7976931348623157e308 / 4);
+  mesh.vertices[2] = Vec3(std::nextafter(1.0, 2.0), std::nextafter(1.0, 0.0), 5e-324);
+  return mesh;
+}
+
+void expect_same_mesh(const Mesh& a, const Mesh& b) {
+  ASSERT_EQ(a.num_vertices(), b.num_vertices());
+  ASSERT_EQ(a.num_faces(), b.num_faces());
+  EXPECT_EQ(a.faces, b.faces);
+  for (std::size_t v = 0; v < a.num_vertices(); ++v)
+    for (int k = 0; k < 3; ++k)  // bitwise equal, including the sign of zero
+      ASSERT_EQ(std::signbit(a.vertices[v][k]), std::signbit(b.vertices[v][k])) << v;
+  EXPECT_EQ(a.vertices, b.vertices);
+}
+
+TEST(WriteMesh, ObjRoundTripIsExact) {
+  const Mesh mesh = awkward_mesh();
+  const auto path = test::temp_dir() / "out.obj";
+  write_mesh(mesh, path);
+  expect_same_mesh(mesh, read_mesh(path));
+}
+
+TEST(WriteMesh, OffRoundTripIsExact) {
+  const Mesh mesh = awkward_mesh();
+  const auto path = test::temp_dir() / "out.OFF";  // extension case does not matter
+  write_mesh(mesh, path);
+  expect_same_mesh(mesh, read_mesh(path));
+}
+
+TEST(WriteMesh, UnknownExtensionIsAnIoError) {
+  const Mesh mesh = read_mesh(test::data_path("cross.off"));
+  EXPECT_THROW(write_mesh(mesh, test::temp_dir() / "out.xyz"), IoError);
+}
+
+TEST(WriteMesh, UnwritablePathIsAnIoError) {
+  const Mesh mesh = read_mesh(test::data_path("cross.off"));
+  EXPECT_THROW(write_mesh(mesh, test::temp_dir() / "no_such_folder" / "out.obj"), IoError);
+}
+
+TEST(WriteMesh, OutOfRangeFaceIsRefused) {
+  Mesh mesh = read_mesh(test::data_path("cross.off"));
+  mesh.faces[3][1] = static_cast<int>(mesh.num_vertices());
+  EXPECT_THROW(write_mesh(mesh, test::temp_dir() / "out.stl"), InvalidMeshError);
+}
+
+}  // namespace
+}  // namespace subfab
