@@ -1,0 +1,525 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "subfab/unfold/delete_facets.h"
+
+#include <algorithm>
+#include <map>
+#include <optional>
+#include <set>
+#include <unordered_map>
+
+#include "subfab/core/error.h"
+#include "unfold/exact_poly_mesh.h"
+
+namespace subfab {
+
+using namespace unfold_detail;
+
+namespace {
+
+std::uint64_t key_of(int a, int b) {
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
+}
+
+std::unordered_map<std::uint64_t, int> edge_owners(const ExactPolyMesh& mesh) {
+  std::unordered_map<std::uint64_t, int> owner;
+  for (std::size_t f = 0; f < mesh.facets.size(); ++f) {
+    if (!mesh.facets[f].alive) continue;
+    for (const auto& loop : mesh.facets[f].loops)
+      for (std::size_t i = 0; i < loop.size(); ++i) owner[key_of(loop[i], loop[(i + 1) % loop.size()])] = int(f);
+  }
+  return owner;
+}
+
+std::vector<int> neighbours_of(const ExactPolyMesh& mesh, const std::unordered_map<std::uint64_t, int>& owner,
+                               int f) {
+  std::set<int> out;
+  for (const auto& loop : mesh.facets[f].loops)
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      const auto it = owner.find(key_of(loop[(i + 1) % loop.size()], loop[i]));
+      if (it != owner.end() && it->second != f) out.insert(it->second);
+    }
+  return {out.begin(), out.end()};
+}
+
+// One entry of the circular buffer: a neighbour facet whose boundary along
+// the hole runs from e (where it leaves the hole boundary, in its own loop
+// order) back to s. Its closing chain will be e, head..., tail..., s.
+struct Entry {
+  int facet;
+  int s, e;
+  std::vector<int> head;  // new vertices after e (last = meeting vertex with the next entry)
+  std::vector<int> tail;  // new vertices before s (first = meeting vertex with the previous entry)
+};
+
+// Half-line between entry i and entry i+1.
+struct HalfLine {
+  int origin;
+  QVec dir;
+};
+
+class HoleCloser {
+ public:
+  HoleCloser(ExactPolyMesh& mesh, const std::vector<int>& region, double max_extension)
+      : mesh_(mesh), region_(region), max_extension_(max_extension) {}
+
+  // Returns "" on success (mesh modified, region facets dead), else the reason
+  // (mesh possibly half-modified: the caller restores it).
+  std::string run() {
+    std::set<int> in_region(region_.begin(), region_.end());
+    for (int f : region_) {
+      if (!mesh_.facets[f].alive) return "facet " + std::to_string(f) + " no longer exists";
+      if (mesh_.facets[f].loops.size() > 1) return "facet " + std::to_string(f) + " has holes";
+    }
+    const auto owner = edge_owners(mesh_);
+    // Boundary of the region (region loops are CCW from outside).
+    std::map<int, int> next;
+    for (int f : region_)
+      for (const auto& loop : mesh_.facets[f].loops)
+        for (std::size_t i = 0; i < loop.size(); ++i) {
+          const int a = loop[i], b = loop[(i + 1) % loop.size()];
+          const auto it = owner.find(key_of(b, a));
+          if (it == owner.end()) return "mesh is not closed around the facet";
+          if (in_region.count(it->second)) continue;
+          if (next.count(a)) return "the facets to delete touch themselves at vertex " + std::to_string(a);
+          next[a] = b;
+        }
+    if (next.empty()) return "the facets to delete have no boundary";
+    std::vector<int> cycle;
+    {
+      int v = next.begin()->first;
+      do {
+        cycle.push_back(v);
+        const auto it = next.find(v);
+        if (it == next.end()) return "the boundary of the facets to delete is not a single loop";
+        v = it->second;
+      } while (v != cycle.front() && cycle.size() <= next.size());
+      if (cycle.size() != next.size()) return "the facets to delete do not form a disk (several boundary loops)";
+    }
+    {
+      std::set<int> verts;
+      for (int f : region_)
+        for (int v : mesh_.facets[f].loops[0]) verts.insert(v);
+      for (int v : verts) region_points_.push_back(mesh_.approx[v]);
+    }
+    const std::size_t m = cycle.size();
+    std::vector<int> nb(m);
+    for (std::size_t j = 0; j < m; ++j) nb[j] = owner.at(key_of(cycle[(j + 1) % m], cycle[j]));
+    std::size_t start = m;
+    for (std::size_t j = 0; j < m; ++j)
+      if (nb[j] != nb[(j + m - 1) % m]) {
+        start = j;
+        break;
+      }
+    if (start == m) return "the hole is surrounded by a single facet";
+    std::set<int> seen;
+    for (std::size_t r = 0; r < m;) {
+      const std::size_t j = (start + r) % m;
+      Entry entry{nb[j], cycle[j], -1, {}, {}};
+      std::size_t len = 0;
+      while (r + len < m && nb[(start + r + len) % m] == entry.facet) ++len;
+      entry.e = cycle[(start + r + len) % m];
+      if (!seen.insert(entry.facet).second)
+        return "facet " + std::to_string(entry.facet) + " borders the hole twice";
+      buffer_.push_back(std::move(entry));
+      r += len;
+    }
+    QVec centroid{Q(0), Q(0), Q(0)};
+    for (int v : cycle) centroid = centroid + mesh_.points[v];
+    centroid = (Q(1) / Q(static_cast<double>(m))) * centroid;
+    centroid_ = centroid;
+    const std::size_t k = buffer_.size();
+    for (std::size_t i = 0; i < k; ++i) {
+      auto line = initial_half_line(buffer_[i], buffer_[(i + 1) % k], owner);
+      if (!line) return reason_;
+      lines_.push_back(*line);
+    }
+    while (buffer_.size() > 3) {
+      if (std::string r = step(); !r.empty()) return r;
+    }
+    if (buffer_.size() == 3) {
+      if (std::string r = finish_three(); !r.empty()) return r;
+    } else if (buffer_.size() == 2) {
+      if (std::string r = finish_two(); !r.empty()) return r;
+    } else {
+      return "the hole is surrounded by a single facet";
+    }
+    return apply();
+  }
+
+ private:
+  const QVec normal(int f) const { return to_qvec(mesh_.facets[f].normal); }
+
+  std::optional<HalfLine> initial_half_line(const Entry& a, const Entry& b,
+                                            const std::unordered_map<std::uint64_t, int>& owner) {
+    const int o = a.e;
+    QVec d = cross(normal(a.facet), normal(b.facet));
+    if (is_zero(d)) {
+      reason_ = "neighbours " + std::to_string(a.facet) + " and " + std::to_string(b.facet) + " are parallel";
+      return std::nullopt;
+    }
+    // Shared edge X -> o in a (and o -> X in b): continue it.
+    const auto& loops = mesh_.facets[a.facet].loops;
+    for (const auto& loop : loops) {
+      const auto it = std::find(loop.begin(), loop.end(), o);
+      if (it == loop.end()) continue;
+      const int x = loop[(it - loop.begin() + loop.size() - 1) % loop.size()];
+      const auto ob = owner.find(key_of(o, x));
+      if (ob != owner.end() && ob->second == b.facet) {
+        const Q s = dot(d, mesh_.points[o] - mesh_.points[x]);
+        if (s < 0) d = Q(-1) * d;
+        return HalfLine{o, d};
+      }
+    }
+    const Q s = dot(d, centroid_ - mesh_.points[o]);
+    if (CGAL::is_zero(s)) {
+      reason_ = "cannot tell which way the edge between facets " + std::to_string(a.facet) + " and " +
+                std::to_string(b.facet) + " extends";
+      return std::nullopt;
+    }
+    if (s < 0) d = Q(-1) * d;
+    return HalfLine{o, d};
+  }
+
+  // Intersection of the half-lines on both sides of entry i (lines_[i-1]
+  // and lines_[i]); returns the parameters' point and a distance key.
+  struct Closure {
+    QVec p;
+    Q key;
+  };
+  std::optional<Closure> intersect(const HalfLine& r1, const HalfLine& r2) const {
+    const QVec& o1 = mesh_.points[r1.origin];
+    const QVec& o2 = mesh_.points[r2.origin];
+    if (r1.origin == r2.origin) return Closure{o1, Q(0)};
+    const QVec c = cross(r1.dir, r2.dir);
+    if (is_zero(c)) return std::nullopt;
+    const QVec w = o2 - o1;
+    const Q cc = dot(c, c);
+    const Q t = dot(cross(w, r2.dir), c) / cc;
+    const Q s = dot(cross(w, r1.dir), c) / cc;
+    if (t < 0 || s < 0) return std::nullopt;
+    const QVec p = o1 + t * r1.dir;
+    if (!(p == o2 + s * r2.dir)) return std::nullopt;  // skew lines (not coplanar)
+    const QVec a = p - o1, b = p - o2;
+    const Q la = dot(a, a), lb = dot(b, b);
+    return Closure{p, la > lb ? la : lb};
+  }
+
+  bool within_extension(const QVec& p) const {
+    if (max_extension_ <= 0) return true;
+    const Vec3 x = to_model(p, mesh_.frame);
+    for (const Vec3& v : region_points_)
+      if ((x - v).norm() <= max_extension_) return true;
+    return false;
+  }
+
+  int point_id(const QVec& p, std::initializer_list<int> candidates) {
+    for (int c : candidates)
+      if (mesh_.points[c] == p) return c;
+    for (int c : created_)
+      if (mesh_.points[c] == p) return c;
+    const int id = add_point(mesh_, p);
+    created_.push_back(id);
+    return id;
+  }
+
+  void close_entry(const Entry& entry, int p) {
+    std::vector<int> chain{entry.e};
+    auto push = [&](int v) {
+      if (chain.back() != v) chain.push_back(v);
+    };
+    for (int v : entry.head) push(v);
+    if (p >= 0) push(p);
+    for (int v : entry.tail) push(v);
+    push(entry.s);
+    chains_[entry.facet] = std::move(chain);
+  }
+
+  std::string step() {
+    const std::size_t k = buffer_.size();
+    std::optional<std::size_t> best;
+    std::optional<Closure> best_closure;
+    for (std::size_t i = 0; i < k; ++i) {
+      const auto c = intersect(lines_[(i + k - 1) % k], lines_[i]);
+      if (!c || !within_extension(c->p)) continue;
+      if (!best_closure || c->key < best_closure->key) {
+        best = i;
+        best_closure = c;
+      }
+    }
+    if (!best) return "no two adjacent half-lines meet: the neighbourhood cannot be closed by extending its facets";
+    const std::size_t i = *best;
+    const std::size_t ip = (i + k - 1) % k, in = (i + 1) % k;
+    const int o1 = lines_[ip].origin, o2 = lines_[i].origin;
+    const int p = point_id(best_closure->p, {o1, o2});
+    close_entry(buffer_[i], p);
+    if (buffer_[ip].head.empty() ? buffer_[ip].e != p : buffer_[ip].head.back() != p) buffer_[ip].head.push_back(p);
+    if (buffer_[in].tail.empty() ? buffer_[in].s != p : buffer_[in].tail.front() != p)
+      buffer_[in].tail.insert(buffer_[in].tail.begin(), p);
+    // New half-line between ip and in, away from where the two old ones came from.
+    QVec d = cross(normal(buffer_[ip].facet), normal(buffer_[in].facet));
+    if (is_zero(d))
+      return "facets " + std::to_string(buffer_[ip].facet) + " and " + std::to_string(buffer_[in].facet) +
+             " would meet but are parallel";
+    // Toward the rest of the hole (the origins of the other half-lines);
+    // failing that, away from where the two closed half-lines came from.
+    const QVec& pp = mesh_.points[p];
+    QVec toward{Q(0), Q(0), Q(0)};
+    for (std::size_t j = 0; j < k; ++j)
+      if (j != ip && j != i) toward = toward + (mesh_.points[lines_[j].origin] - pp);
+    Q s = dot(d, toward);
+    if (CGAL::is_zero(s)) s = -dot(d, (mesh_.points[o1] - pp) + (mesh_.points[o2] - pp));
+    if (CGAL::is_zero(s)) return "ambiguous continuation at a new vertex";
+    if (s < 0) d = Q(-1) * d;
+    HalfLine line{p, d};
+    // Remove entry i; line ip becomes the new line.
+    buffer_.erase(buffer_.begin() + static_cast<std::ptrdiff_t>(i));
+    lines_[ip] = line;
+    lines_.erase(lines_.begin() + static_cast<std::ptrdiff_t>(i));
+    return "";
+  }
+
+  std::string finish_three() {
+    const auto c = intersect(lines_[0], lines_[1]);  // closes entry 1
+    if (!c) return "the last three facets around the hole do not meet in a point";
+    const HalfLine& r = lines_[2];
+    const QVec w = c->p - mesh_.points[r.origin];
+    if (!is_zero(cross(w, r.dir)) || dot(w, r.dir) < 0)
+      return "the last three facets around the hole do not meet in a point";
+    if (!within_extension(c->p)) return "closing the hole would move the surface too far";
+    const int p = point_id(c->p, {lines_[0].origin, lines_[1].origin, lines_[2].origin});
+    for (const Entry& e : buffer_) close_entry(e, p);
+    return "";
+  }
+
+  std::string finish_two() {
+    const HalfLine &r1 = lines_[0], &r2 = lines_[1];
+    const QVec w = mesh_.points[r2.origin] - mesh_.points[r1.origin];
+    if (!is_zero(cross(w, r1.dir)) || dot(w, r1.dir) < 0 || !is_zero(cross(r1.dir, r2.dir)) ||
+        dot(r1.dir, r2.dir) > 0)
+      return "the last two facets around the hole do not meet along one edge";
+    for (const Entry& e : buffer_) close_entry(e, -1);
+    return "";
+  }
+
+  std::string apply() {
+    for (const auto& [f, chain] : chains_) {
+      auto& loops = mesh_.facets[f].loops;
+      bool done = false;
+      for (auto& loop : loops) {
+        const auto it = std::find(loop.begin(), loop.end(), chain.front());
+        if (it == loop.end()) continue;
+        const std::size_t n = loop.size();
+        const std::size_t ie = static_cast<std::size_t>(it - loop.begin());
+        std::size_t len = 0;  // number of vertices strictly between e and s
+        while (len < n && loop[(ie + 1 + len) % n] != chain.back()) ++len;
+        if (len >= n) return "internal: hole chain of facet " + std::to_string(f) + " not found";
+        std::vector<int> fresh;
+        fresh.reserve(n - len + chain.size());
+        // loop from s around to e, then the chain interior
+        for (std::size_t r = 0; r + len + 1 < n + 1; ++r) {
+          const std::size_t idx = (ie + 1 + len + r) % n;
+          fresh.push_back(loop[idx]);
+          if (idx == ie) break;
+        }
+        for (std::size_t c = 1; c + 1 < chain.size(); ++c) fresh.push_back(chain[c]);
+        loop = std::move(fresh);
+        done = true;
+        break;
+      }
+      if (!done) return "internal: facet " + std::to_string(f) + " lost its hole boundary";
+    }
+    for (int f : region_) mesh_.facets[f].alive = false;
+    return "";
+  }
+
+  ExactPolyMesh& mesh_;
+  std::vector<int> region_;
+  double max_extension_;
+  std::vector<Vec3> region_points_;
+  QVec centroid_;
+  std::vector<Entry> buffer_;
+  std::vector<HalfLine> lines_;  // lines_[i]: between buffer_[i] and buffer_[i+1]
+  std::map<int, std::vector<int>> chains_;
+  std::vector<int> created_;
+  std::string reason_;
+};
+
+// Deletes `region` (facet ids) and validates; restores the mesh on failure.
+std::string try_delete(ExactPolyMesh& mesh, const std::vector<int>& region, double max_extension,
+                       std::size_t& num_merged) {
+  const std::vector<QFacet> saved_facets = mesh.facets;
+  const std::size_t saved_points = mesh.points.size();
+  auto restore = [&] {
+    mesh.facets = saved_facets;
+    mesh.points.resize(saved_points);
+    mesh.approx.resize(saved_points);
+  };
+  std::string reason = HoleCloser(mesh, region, max_extension).run();
+  std::vector<int> changed;
+  if (reason.empty()) {
+    for (std::size_t f = 0; f < mesh.facets.size(); ++f)
+      if (mesh.facets[f].alive && mesh.facets[f].loops != saved_facets[f].loops) changed.push_back(int(f));
+    std::size_t alive_before = 0;
+    for (const auto& f : mesh.facets) alive_before += f.alive;
+    const auto merged = merge_coplanar_neighbours(mesh);
+    if (!merged) {
+      reason = "merging coplanar neighbours gives a pinched facet";
+    } else {
+      std::size_t alive_after = 0;
+      for (const auto& f : mesh.facets) alive_after += f.alive;
+      changed.insert(changed.end(), merged->begin(), merged->end());
+      const auto reduced = remove_two_facet_vertices(mesh);
+      changed.insert(changed.end(), reduced.begin(), reduced.end());
+      std::sort(changed.begin(), changed.end());
+      changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
+      changed.erase(std::remove_if(changed.begin(), changed.end(), [&](int f) { return !mesh.facets[f].alive; }),
+                    changed.end());
+      reason = check_closed_manifold(mesh);
+      for (std::size_t i = 0; reason.empty() && i < changed.size(); ++i) reason = check_facet_simple(mesh, changed[i]);
+      if (reason.empty()) reason = check_no_intersections(mesh, changed);
+      if (reason.empty()) num_merged += alive_before - alive_after;
+    }
+    if (!reason.empty()) reason = "the closed surface would be invalid: " + reason;
+  }
+  if (!reason.empty()) restore();
+  return reason;
+}
+
+}  // namespace
+
+DeleteFacetsResult delete_facets(const PolyMesh& input, const DeleteFacetsOptions& options) {
+  StageScope scope(options.progress, "delete facets");
+  ExactPolyMesh mesh = to_exact(input, LatticeFrame{options.grid_origin, options.grid_step});
+  if (std::string r = check_closed_manifold(mesh); !r.empty())
+    throw InvalidMeshError("polygonal mesh given to facet deletion is invalid: " + r);
+  DeleteFacetsResult result;
+  const std::size_t num_input = mesh.facets.size();
+
+  // Explicit ids: connected groups.
+  if (!options.facet_ids.empty()) {
+    std::set<int> ids;
+    for (int id : options.facet_ids) {
+      if (id < 0 || static_cast<std::size_t>(id) >= num_input)
+        throw InvalidArgumentError("facet id " + std::to_string(id) + " does not exist (the mesh has " +
+                                   std::to_string(num_input) + " facets)");
+      ids.insert(id);
+    }
+    const auto owner = edge_owners(mesh);
+    std::set<int> left = ids;
+    while (!left.empty()) {
+      std::vector<int> group{*left.begin()};
+      left.erase(left.begin());
+      for (std::size_t g = 0; g < group.size(); ++g)
+        for (int n : neighbours_of(mesh, owner, group[g]))
+          if (left.erase(n)) group.push_back(n);
+      std::sort(group.begin(), group.end());
+      bool alive = std::all_of(group.begin(), group.end(), [&](int f) { return mesh.facets[f].alive; });
+      std::string reason = alive ? try_delete(mesh, group, 0.0, result.num_merged)
+                                 : "a facet of the group was merged away by an earlier deletion";
+      if (reason.empty()) {
+        result.num_deleted += group.size();
+      } else {
+        result.failures.push_back({group, reason});
+        if (options.progress) options.progress->warn("cannot delete facet(s) " + std::to_string(group[0]) + "...: " + reason);
+      }
+    }
+  }
+
+  if (options.min_facet_area > 0) {
+    std::map<int, std::string> last_failure;
+    bool progress_made = true;
+    std::set<std::vector<int>> failed_groups;
+    while (progress_made) {
+      progress_made = false;
+      std::vector<std::pair<double, int>> small;
+      for (std::size_t f = 0; f < mesh.facets.size(); ++f)
+        if (mesh.facets[f].alive) {
+          const double a = facet_area(mesh, int(f));
+          if (a < options.min_facet_area) small.emplace_back(a, int(f));
+        }
+      std::sort(small.begin(), small.end());
+      for (std::size_t idx = 0; idx < small.size(); ++idx) {
+        const int f = small[idx].second;
+        if (!mesh.facets[f].alive || facet_area(mesh, f) >= options.min_facet_area) continue;
+        if (options.progress) options.progress->update(idx, small.size());
+        std::string reason;
+        if (!failed_groups.count({f})) {
+          reason = try_delete(mesh, {f}, options.max_extension, result.num_merged);
+          if (reason.empty()) {
+            ++result.num_deleted;
+            progress_made = true;
+            last_failure.erase(f);
+            continue;
+          }
+          failed_groups.insert({f});
+          last_failure[f] = reason;
+        }
+        // Groups with small neighbours (Figure 3.11), breadth first.
+        const double group_limit = options.group_area_factor * options.min_facet_area;
+        std::vector<std::vector<int>> frontier{{f}};
+        bool deleted = false;
+        for (int size = 2; size <= options.max_group_size && !deleted; ++size) {
+          std::vector<std::vector<int>> grown;
+          const auto owner = edge_owners(mesh);
+          for (const auto& g : frontier) {
+            std::set<int> cand;
+            for (int h : g)
+              for (int n : neighbours_of(mesh, owner, h))
+                if (!std::count(g.begin(), g.end(), n) && facet_area(mesh, n) < group_limit) cand.insert(n);
+            for (int n : cand) {
+              auto ng = g;
+              ng.push_back(n);
+              std::sort(ng.begin(), ng.end());
+              if (std::find(grown.begin(), grown.end(), ng) == grown.end()) grown.push_back(ng);
+            }
+          }
+          for (const auto& g : grown) {
+            if (failed_groups.count(g)) continue;
+            const std::string r = try_delete(mesh, g, options.max_extension, result.num_merged);
+            if (r.empty()) {
+              result.num_deleted += g.size();
+              progress_made = deleted = true;
+              for (int h : g) last_failure.erase(h);
+              break;
+            }
+            failed_groups.insert(g);
+          }
+          frontier = std::move(grown);
+          if (frontier.size() > 64) frontier.resize(64);
+        }
+        if (deleted) continue;
+      }
+      if (progress_made) failed_groups.clear();
+    }
+    for (const auto& [f, reason] : last_failure)
+      if (mesh.facets[f].alive && facet_area(mesh, f) < options.min_facet_area)
+        result.failures.push_back({{f}, reason});
+  }
+  result.mesh = to_poly_mesh(mesh);
+  if (options.progress)
+    options.progress->info(std::to_string(result.num_deleted) + " facets deleted, " +
+                           std::to_string(result.num_merged) + " merged, " +
+                           std::to_string(result.mesh.num_facets()) + " left");
+  return result;
+}
+
+std::string check_poly_mesh(const PolyMesh& poly, const Vec3& grid_origin, double grid_step) {
+  ExactPolyMesh mesh;
+  try {
+    mesh = to_exact(poly, LatticeFrame{grid_origin, grid_step});
+  } catch (const Error& e) {
+    return e.what();
+  }
+  for (std::size_t f = 0; f < poly.facets.size(); ++f)
+    if (poly.facets[f].normal < 0) return "facet " + std::to_string(f) + " has no lattice normal index";
+  if (std::string r = check_closed_manifold(mesh); !r.empty()) return r;
+  std::vector<int> all;
+  for (std::size_t f = 0; f < mesh.facets.size(); ++f) {
+    if (std::string r = check_facet_simple(mesh, int(f)); !r.empty()) return r;
+    all.push_back(int(f));
+  }
+  if (has_coplanar_neighbours(mesh)) return "two adjacent facets are coplanar";
+  return check_no_intersections(mesh, all);
+}
+
+}  // namespace subfab
