@@ -1,0 +1,108 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file order_boxes.h
+//! The pure graph part of overlap resolution (thesis Section 4.3.3), written
+//! against callbacks so that it can be tested with synthetic conflicts; the
+//! geometry (the exact conflict test) lives in resolve_overlaps.cpp.
+//!
+//! Outline of order_boxes():
+//!   1. conflict graph: edge a -> b iff carving box a before box b would leave
+//!      the block of b invalid (callback `conflict`, asked only for pairs whose
+//!      interiors overlap, in parallel);
+//!   2. while a strongly connected component with two or more vertices exists
+//!      (Tarjan, recomputed after every split; never all cycles):
+//!        - take the component holding the smallest live vertex id s and a
+//!          shortest cycle through s (BFS inside the component);
+//!        - for every edge a -> b of that cycle, candidate split: B_b minus
+//!          B_a as at most 6 disjoint sub-boxes of B_b (box_difference, best of
+//!          the 6 cutting orders), minus the droppable pieces; score = size of
+//!          the smallest kept piece; choose the edge with the largest score
+//!          (ties: fewer pieces, then the earlier edge on the cycle);
+//!        - replace b by its kept pieces and test their edges against the
+//!          boxes that overlapped b;
+//!      Every split removes the overlap volume of a and b and creates no new
+//!      overlap, and all box coordinates come from the input coordinates, so
+//!      the loop ends; a cap (options.max_splits) turns a bug into an error.
+//!   3. order: Kahn's algorithm on the reversed graph (a box is ready when
+//!      every box it points to has been output), always taking the ready box
+//!      of smallest size (ties: smaller id) first.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include "subfab/core/progress.h"
+#include "subfab/decompose/height_box.h"
+
+namespace subfab::detail {
+
+//! What order_boxes needs to know about the geometry. All callbacks must be
+//! deterministic and safe to call concurrently.
+struct BoxOrderCallbacks {
+  //! Edge first -> second: carving `first` before `second` (so that second's
+  //! block becomes solid ∩ (second \ first)) leaves an invalid block.
+  //! Called only for boxes whose interiors overlap.
+  std::function<bool(const HeightBox& first, const HeightBox& second)> conflict;
+  //! A piece made by a split may be dropped without losing any part of the
+  //! surface (its block is empty or touches no surface). Null = keep all.
+  std::function<bool(const HeightBox& piece)> droppable;
+  //! Deterministic size of the block of a box (>= 0; smaller blocks are
+  //! carved first, splits keep the smallest piece large).
+  std::function<double(const HeightBox& box)> size;
+};
+
+//! Options of order_boxes().
+struct BoxOrderOptions {
+  int max_splits = 100000;       // cap on cycle-breaking splits (AlgorithmError beyond it)
+  Progress* progress = nullptr;  // stage reporting (nullptr = silent)
+};
+
+//! Result of order_boxes().
+struct BoxOrderResult {
+  std::vector<HeightBox> ordered;      // carve order: ordered[0] is carved first
+  int num_splits = 0;                  // boxes replaced by their pieces
+  int num_dropped_pieces = 0;          // pieces of splits left out (droppable)
+  std::size_t num_initial_edges = 0;   // conflict edges before any split
+  std::size_t num_final_edges = 0;     // conflict edges of the final DAG
+  std::size_t num_initial_cyclic = 0;  // boxes in non-trivial strongly connected components at the start
+};
+
+//! Splits cycles and orders the boxes (see the file comment).
+//! \throw AlgorithmError if options.max_splits splits do not make the graph acyclic.
+BoxOrderResult order_boxes(std::vector<HeightBox> boxes, const BoxOrderCallbacks& callbacks,
+                           const BoxOrderOptions& options);
+
+//! b \ cut as disjoint closed boxes, each a sub-box of b with a positive
+//! volume, whose union is the closure of b \ cut. `dims` is the cutting order:
+//! first the slabs of b below and above cut along dims[0], then in the middle
+//! slab along dims[1], then along dims[2] (at most 6 boxes). Coordinates are
+//! copied from b and cut, never computed. Empty when cut contains b; {b} when
+//! the interiors do not overlap.
+std::vector<Box3> box_difference(const Box3& b, const Box3& cut, const std::array<int, 3>& dims);
+
+//! The open box where material of the solid makes carving `first` before
+//! `second` invalid (thesis Section 4.3.3, decided exactly by the caller):
+//! with d = second.axis along dimension k, first's face on the +d side lies at
+//! level h; when h is strictly between second's base and top along d and the
+//! interiors overlap, the region is (first ∩ second) across d times the part of
+//! second beyond h along d; otherwise nullopt (no conflict is possible).
+//! Reasoning: solid ∩ (B2 \ B1) is bounded by input triangles inside B2 (fine
+//! when B2 is valid), parts of B2's faces (fine) and parts of B1's faces with
+//! reversed normals; a face of B1 with outward normal e becomes one with
+//! normal -e, which violates the height field only for e = d (-d is allowed
+//! on the base plane only, and h > base); it is part of the block where the
+//! solid lies just beyond it, which for a valid B2 (its solid part is closed
+//! downwards along -d) happens iff the solid's interior meets this region.
+//! Coordinates are copied from the boxes (exact).
+std::optional<Box3> conflict_region(const HeightBox& first, const HeightBox& second);
+
+//! Strongly connected components of a directed graph on vertices
+//! 0..n-1 (adjacency lists `out`; vertices with alive[v] == 0 are ignored):
+//! component id per vertex (-1 for dead vertices), ids in order of discovery
+//! from the smallest vertex. Iterative Tarjan, O(n + e).
+std::vector<int> strongly_connected_components(const std::vector<std::vector<int>>& out,
+                                               const std::vector<char>& alive);
+
+}  // namespace subfab::detail
