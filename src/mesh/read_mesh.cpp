@@ -213,9 +213,8 @@ Mesh read_mesh(const std::filesystem::path& path, ReadInfo* info_out) {
   switch (info.format) {
     case MeshFormat::Obj: detail::read_obj(data, name, mesh, info); break;
     case MeshFormat::Off: detail::read_off(data, name, mesh, info); break;
-    case MeshFormat::Ply:
-    case MeshFormat::Stl:
-      throw IoError(name + ": reading " + format_name(info.format) + " is not available yet in this build");
+    case MeshFormat::Ply: detail::read_ply(data, name, mesh, info); break;
+    case MeshFormat::Stl: detail::read_stl(data, name, mesh, info); break;
   }
   if (mesh.faces.empty())
     detail::throw_invalid(name, {},
