@@ -16,7 +16,7 @@ namespace subfab {
 
 //! Options of analyze_mesh().
 struct AnalyzeOptions {
-  CheckOptions checks;              // shared by every check (number of example ids)
+  CheckOptions checks = {};         // shared by every check (number of example ids)
   bool self_intersections = true;   // run the self-intersection check (the slowest one)
 };
 
