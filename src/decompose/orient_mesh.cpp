@@ -1,0 +1,353 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "subfab/decompose/orient_mesh.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numeric>
+#include <sstream>
+#include <vector>
+
+#include "subfab/core/error.h"
+#include "subfab/core/parallel.h"
+
+namespace subfab {
+namespace {
+
+using Matrix3Xd = Eigen::Matrix<double, 3, Eigen::Dynamic>;
+
+//! Number of candidates refined on the exact energy (after refinement on clustered normals).
+constexpr std::size_t kNumExactRefined = 3;
+
+//! Area-weighted normals (A_f n_f = half the cross product), one column per face.
+Matrix3Xd weighted_normals(const Mesh& mesh) {
+  Matrix3Xd w(3, static_cast<Eigen::Index>(mesh.num_faces()));
+  for (std::size_t f = 0; f < mesh.num_faces(); ++f) w.col(static_cast<Eigen::Index>(f)) = 0.5 * face_normal_scaled(mesh, f);
+  return w;
+}
+
+//! Sum of ||R w||_1 over the columns.
+double l1_sum(const Matrix3Xd& w, const Eigen::Matrix3d& r) { return (r * w).cwiseAbs().sum(); }
+
+//! Normals binned on a cube map (bins x bins per face), summed per bin, in
+//! face order (deterministic). Empty bins are dropped.
+Matrix3Xd cluster_normals(const Matrix3Xd& w, int bins) {
+  std::vector<Eigen::Vector3d> sums(static_cast<std::size_t>(6 * bins * bins), Eigen::Vector3d::Zero());
+  for (Eigen::Index f = 0; f < w.cols(); ++f) {
+    const Eigen::Vector3d n = w.col(f);
+    Eigen::Index m;
+    const double len = n.cwiseAbs().maxCoeff(&m);
+    if (!(len > 0)) continue;
+    const int face = 2 * static_cast<int>(m) + (n[m] < 0 ? 1 : 0);
+    const auto cell = [&](int c) {
+      const double t = (n[(m + c) % 3] / len + 1) * 0.5 * bins;
+      return std::clamp(static_cast<int>(std::floor(t)), 0, bins - 1);
+    };
+    sums[static_cast<std::size_t>((face * bins + cell(1)) * bins + cell(2))] += n;
+  }
+  std::vector<Eigen::Vector3d> kept;
+  for (const auto& s : sums)
+    if (s.squaredNorm() > 0) kept.push_back(s);
+  Matrix3Xd out(3, static_cast<Eigen::Index>(kept.size()));
+  for (std::size_t i = 0; i < kept.size(); ++i) out.col(static_cast<Eigen::Index>(i)) = kept[i];
+  return out;
+}
+
+//! The 24 proper rotations mapping the coordinate axes to themselves.
+std::vector<Eigen::Matrix3d> cube_rotations() {
+  std::vector<Eigen::Matrix3d> out;
+  std::array<int, 3> perm{0, 1, 2};
+  do {
+    for (int signs = 0; signs < 8; ++signs) {
+      Eigen::Matrix3d p = Eigen::Matrix3d::Zero();
+      for (int r = 0; r < 3; ++r) p(r, perm[static_cast<std::size_t>(r)]) = (signs >> r) & 1 ? -1.0 : 1.0;
+      if (p.determinant() > 0) out.push_back(p);
+    }
+  } while (std::next_permutation(perm.begin(), perm.end()));
+  return out;
+}
+
+//! The symmetric equivalent P R closest to the identity (largest trace); the
+//! first such P in a fixed order on ties.
+Eigen::Matrix3d closest_to_identity(const Eigen::Matrix3d& r, const std::vector<Eigen::Matrix3d>& symmetries) {
+  Eigen::Matrix3d best = r;
+  double best_trace = -INFINITY;
+  for (const auto& p : symmetries) {
+    const Eigen::Matrix3d q = p * r;
+    if (q.trace() > best_trace + 1e-12) {
+      best_trace = q.trace();
+      best = q;
+    }
+  }
+  return best;
+}
+
+//! Cosine-like similarity of two frames modulo the cube rotations: max over P
+//! of trace(P R1 R2^T) (3 when equal up to symmetry).
+double symmetric_similarity(const Eigen::Matrix3d& r1, const Eigen::Matrix3d& r2,
+                            const std::vector<Eigen::Matrix3d>& symmetries) {
+  const Eigen::Matrix3d m = r1 * r2.transpose();
+  double best = -INFINITY;
+  for (const auto& p : symmetries) best = std::max(best, (p * m).trace());
+  return best;
+}
+
+//! Rotation whose third row is z (unit) and whose first row is the basis
+//! vector e1 of z's orthogonal plane turned by `twist`.
+Eigen::Matrix3d frame_from_axis(const Eigen::Vector3d& z, double twist) {
+  const Eigen::Vector3d ref = std::abs(z.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+  const Eigen::Vector3d e1 = ref.cross(z).normalized();
+  const Eigen::Vector3d e2 = z.cross(e1);
+  const Eigen::Vector3d x = std::cos(twist) * e1 + std::sin(twist) * e2;
+  Eigen::Matrix3d r;
+  r.row(0) = x.transpose();
+  r.row(1) = z.cross(x).transpose();
+  r.row(2) = z.transpose();
+  return r;
+}
+
+Eigen::Matrix3d exp_rotation(const Eigen::Vector3d& omega) {
+  const double angle = omega.norm();
+  if (angle == 0) return Eigen::Matrix3d::Identity();
+  return Eigen::AngleAxisd(angle, omega / angle).toRotationMatrix();
+}
+
+//! Nelder-Mead on E(exp(omega) * r0) over omega in R^3, from a regular
+//! simplex of size `step`; stops when the simplex is smaller than tolerance
+//! or after max_evals evaluations. Returns the best rotation and its energy sum.
+template <typename Energy>
+std::pair<Eigen::Matrix3d, double> nelder_mead(const Energy& energy_of, const Eigen::Matrix3d& r0, double step,
+                                               double tolerance, int max_evals) {
+  const auto energy = [&](const Eigen::Vector3d& omega) { return energy_of(exp_rotation(omega) * r0, omega.norm()); };
+  std::array<Eigen::Vector3d, 4> x;
+  std::array<double, 4> e;
+  x[0] = Eigen::Vector3d::Zero();
+  for (int i = 0; i < 3; ++i) x[static_cast<std::size_t>(i + 1)] = step * Eigen::Vector3d::Unit(i);
+  for (std::size_t i = 0; i < 4; ++i) e[i] = energy(x[i]);
+  int evals = 4;
+  std::array<std::size_t, 4> order{0, 1, 2, 3};
+  while (evals < max_evals) {
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return e[a] < e[b] || (e[a] == e[b] && a < b); });
+    const std::size_t best = order[0], worst = order[3], second_worst = order[2];
+    double size = 0;
+    for (std::size_t i = 1; i < 4; ++i) size = std::max(size, (x[order[i]] - x[best]).norm());
+    if (size < tolerance) break;
+    const Eigen::Vector3d centroid = (x[order[0]] + x[order[1]] + x[order[2]]) / 3.0;
+    const Eigen::Vector3d reflected = centroid + (centroid - x[worst]);
+    const double er = energy(reflected);
+    ++evals;
+    if (er < e[best]) {
+      const Eigen::Vector3d expanded = centroid + 2.0 * (centroid - x[worst]);
+      const double ee = energy(expanded);
+      ++evals;
+      if (ee < er) {
+        x[worst] = expanded;
+        e[worst] = ee;
+      } else {
+        x[worst] = reflected;
+        e[worst] = er;
+      }
+      continue;
+    }
+    if (er < e[second_worst]) {
+      x[worst] = reflected;
+      e[worst] = er;
+      continue;
+    }
+    const bool outside = er < e[worst];
+    const Eigen::Vector3d contracted =
+        outside ? Eigen::Vector3d(centroid + 0.5 * (reflected - centroid)) : Eigen::Vector3d(centroid + 0.5 * (x[worst] - centroid));
+    const double ec = energy(contracted);
+    ++evals;
+    if (ec < std::min(er, e[worst])) {
+      x[worst] = contracted;
+      e[worst] = ec;
+      continue;
+    }
+    for (std::size_t i = 0; i < 4; ++i) {  // shrink towards the best
+      if (i == best) continue;
+      x[i] = x[best] + 0.5 * (x[i] - x[best]);
+      e[i] = energy(x[i]);
+      ++evals;
+    }
+  }
+  const std::size_t best = static_cast<std::size_t>(std::min_element(e.begin(), e.end()) - e.begin());
+  return {exp_rotation(x[best]) * r0, e[best]};
+}
+
+//! sum_f ||R w_f||_1 for rotations R = exp(omega) r0 near r0, fast: a face
+//! whose rotated unit normal has every component of magnitude > radius at r0
+//! keeps its component signs for |omega| <= radius (a turn by angle t moves a
+//! unit vector by at most t), so those faces add up to a linear function of R;
+//! only the others are summed explicitly. Beyond the radius, the full sum.
+class LocalEnergy {
+ public:
+  LocalEnergy(const Matrix3Xd& w, const Eigen::Matrix3d& r0, double radius) : w_(w), radius_(radius) {
+    linear_.setZero();
+    std::vector<Eigen::Index> near;
+    const Matrix3Xd rotated = r0 * w;
+    for (Eigen::Index f = 0; f < w.cols(); ++f) {
+      const Eigen::Vector3d v = rotated.col(f);
+      const double len = v.norm();
+      if (v.cwiseAbs().minCoeff() > (radius * (1 + 1e-9) + 1e-12) * len) {
+        for (int i = 0; i < 3; ++i) linear_.col(i) += (v[i] > 0 ? 1.0 : -1.0) * w.col(f);
+      } else {
+        near.push_back(f);
+      }
+    }
+    near_.resize(3, static_cast<Eigen::Index>(near.size()));
+    for (std::size_t i = 0; i < near.size(); ++i) near_.col(static_cast<Eigen::Index>(i)) = w.col(near[i]);
+  }
+  //! Energy sum of r = exp(omega) r0, given |omega|.
+  double operator()(const Eigen::Matrix3d& r, double omega_norm) const {
+    if (omega_norm > radius_) return l1_sum(w_, r);
+    double e = l1_sum(near_, r);
+    for (int i = 0; i < 3; ++i) e += r.row(i).dot(linear_.col(i));
+    return e;
+  }
+
+ private:
+  const Matrix3Xd& w_;
+  double radius_;
+  Eigen::Matrix3d linear_;  // column i: sum over far faces of sign_i * w_f
+  Matrix3Xd near_;
+};
+
+//! Re-orthonormalised proper rotation.
+Eigen::Matrix3d orthonormalize(const Eigen::Matrix3d& r) {
+  return Eigen::Quaterniond(r).normalized().toRotationMatrix();
+}
+
+}  // namespace
+
+double orientation_energy(const Mesh& mesh, const Eigen::Matrix3d& rotation) {
+  const Matrix3Xd w = weighted_normals(mesh);
+  const double area = w.colwise().norm().sum();
+  if (!(area > 0)) throw InvalidMeshError("cannot orient a mesh with zero surface area");
+  return l1_sum(w, rotation) / area;
+}
+
+OrientResult orient_mesh(const Mesh& mesh, const OrientOptions& options) {
+  if (options.num_directions < 1 || options.num_twists < 1 || options.num_refined < 0 || !(options.tolerance > 0) ||
+      !(options.keep_frame_area >= 0) || !(options.keep_frame_tolerance >= 0))
+    throw InvalidArgumentError(
+        "orientation options: num_directions and num_twists must be >= 1, num_refined >= 0, tolerance > 0, "
+        "keep_frame_area and keep_frame_tolerance >= 0");
+  if (mesh.empty()) throw InvalidMeshError("cannot orient a mesh with no faces");
+  const Matrix3Xd w = weighted_normals(mesh);
+  const double area = w.colwise().norm().sum();
+  if (!(area > 0)) throw InvalidMeshError("cannot orient a mesh with zero surface area");
+  const std::vector<Eigen::Matrix3d> symmetries = cube_rotations();
+
+  // 2. Coarse search on clustered normals over the fundamental region.
+  const Matrix3Xd clustered = cluster_normals(w, 12);
+  const double golden_angle = M_PI * (3.0 - std::sqrt(5.0));
+  std::vector<Eigen::Vector3d> axes;
+  for (int i = 0; i < options.num_directions; ++i) {
+    const double z = 1.0 - (2.0 * i + 1.0) / options.num_directions;
+    if (z < 1.0 / std::sqrt(3.0) - 0.03) break;  // z decreases with i
+    const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+    axes.emplace_back(r * std::cos(golden_angle * i), r * std::sin(golden_angle * i), z);
+  }
+  const std::size_t num_twists = static_cast<std::size_t>(options.num_twists);
+  const std::size_t num_candidates = axes.size() * num_twists;
+  std::vector<double> coarse(num_candidates);
+  parallel_for(
+      0, num_candidates,
+      [&](std::size_t c) {
+        const double twist = 0.5 * M_PI * static_cast<double>(c % num_twists) / static_cast<double>(num_twists);
+        coarse[c] = l1_sum(clustered, frame_from_axis(axes[c / num_twists], twist));
+      },
+      64);
+  std::vector<std::size_t> ranked(num_candidates);
+  std::iota(ranked.begin(), ranked.end(), 0);
+  std::stable_sort(ranked.begin(), ranked.end(), [&](std::size_t a, std::size_t b) { return coarse[a] < coarse[b]; });
+  // Best distinct candidates (more than ~6 degrees apart modulo symmetry), plus the identity.
+  std::vector<Eigen::Matrix3d> starts{Eigen::Matrix3d::Identity()};
+  const double min_similarity = 1.0 + 2.0 * std::cos(6.0 * M_PI / 180.0);
+  for (std::size_t c : ranked) {
+    if (static_cast<int>(starts.size()) > options.num_refined) break;
+    const double twist = 0.5 * M_PI * static_cast<double>(c % num_twists) / static_cast<double>(num_twists);
+    const Eigen::Matrix3d r = frame_from_axis(axes[c / num_twists], twist);
+    bool distinct = true;
+    for (const auto& s : starts) distinct = distinct && symmetric_similarity(r, s, symmetries) < min_similarity;
+    if (distinct) starts.push_back(r);
+  }
+
+  // 3. Local refinement: every start on the clustered normals (cheap), then
+  //    the best few on the exact energy, with restarts at smaller steps.
+  std::vector<Eigen::Matrix3d> rough(starts.size());
+  std::vector<double> rough_energy(starts.size());
+  parallel_for(0, starts.size(), [&](std::size_t s) {
+    Eigen::Matrix3d r = starts[s];
+    const auto energy = [&](const Eigen::Matrix3d& q, double) { return l1_sum(clustered, q); };
+    for (double step : {0.04, 4e-3}) r = orthonormalize(nelder_mead(energy, r, step, 1e-5, 200).first);
+    rough[s] = r;
+    rough_energy[s] = l1_sum(w, r);
+  });
+  std::vector<std::size_t> order(starts.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return rough_energy[a] < rough_energy[b]; });
+  order.resize(std::min<std::size_t>(order.size(), kNumExactRefined));
+  std::vector<Eigen::Matrix3d> refined(order.size());
+  std::vector<double> energies(order.size());
+  parallel_for(0, order.size(), [&](std::size_t s) {
+    Eigen::Matrix3d r = rough[order[s]];
+    double e = rough_energy[order[s]];
+    for (double step : {0.02, 1e-3, 3e-5, 1e-6}) {
+      const LocalEnergy energy(w, r, 6 * step);
+      auto [r2, e2] = nelder_mead(energy, r, step, options.tolerance, 300);
+      if (e2 < e) {
+        r = orthonormalize(r2);
+        e = l1_sum(w, r);
+      }
+    }
+    refined[s] = r;
+    energies[s] = e;
+  });
+
+  // 4. Best energy; among near ties, the frame closest to the identity.
+  const double energy_identity = l1_sum(w, Eigen::Matrix3d::Identity());
+  double best_energy = energy_identity;
+  for (double e : energies) best_energy = std::min(best_energy, e);
+  OrientResult result;
+  result.energy_before = energy_identity / area;
+  // Fraction of the area whose normals are exactly on an axis in the input frame.
+  double aligned_area = 0;
+  for (Eigen::Index f = 0; f < w.cols(); ++f) {
+    const Eigen::Vector3d n = w.col(f);
+    if ((n.array() == 0).count() >= 2) aligned_area += n.norm();
+  }
+  const bool axis_aligned_input = aligned_area >= options.keep_frame_area * area &&
+                                  energy_identity <= best_energy * (1 + options.keep_frame_tolerance);
+  if (energy_identity <= best_energy * (1 + 1e-9) || axis_aligned_input) {
+    result.rotation = Eigen::Matrix3d::Identity();
+    result.energy_after = result.energy_before;
+  } else {
+    double best_trace = -INFINITY;
+    for (std::size_t s = 0; s < refined.size(); ++s) {
+      if (energies[s] > best_energy * (1 + 1e-9)) continue;
+      const Eigen::Matrix3d r = orthonormalize(closest_to_identity(refined[s], symmetries));
+      if (r.trace() > best_trace + 1e-12) {
+        best_trace = r.trace();
+        result.rotation = r;
+      }
+    }
+    result.energy_after = l1_sum(w, result.rotation) / area;
+    if (result.energy_after > result.energy_before) {  // rounding of the final rotation: keep the input frame
+      result.rotation = Eigen::Matrix3d::Identity();
+      result.energy_after = result.energy_before;
+    }
+  }
+  if (options.progress) {
+    std::ostringstream msg;
+    msg << "orientation energy " << result.energy_before << " -> " << result.energy_after << " (" << num_candidates
+        << " coarse candidates, " << starts.size() << " refined)";
+    options.progress->info(msg.str());
+  }
+  return result;
+}
+
+}  // namespace subfab
