@@ -179,7 +179,7 @@ class BodyCursor {
     if (n < 0) fail("negative list length " + std::to_string(n));
     const std::size_t min_item = ascii() ? 2 : type_size(item_type);
     if (static_cast<std::uint64_t>(n) > remaining() / min_item + 1)
-      fail("list of " + std::to_string(n) + " values is longer than the rest of the file");
+      fail("list of " + std::to_string(n) + " values does not fit in the rest of the file (truncated file?)");
     return static_cast<std::uint64_t>(n);
   }
 

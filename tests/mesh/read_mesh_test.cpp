@@ -1,7 +1,12 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "subfab/mesh/read_mesh.h"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
+#include <cstdint>
+#include <cstring>
+#include <limits>
 
 #include <algorithm>
 #include <fstream>
@@ -144,6 +149,145 @@ TEST(ReadOff, HeaderVariantsAndPolygons) {
     const Mesh m = read_bytes("h.off", header + "3 1\n0 0 0 1 2\n1 0 0 3 4\n0 1 0 5 6\n3 0 1 2\n");
     EXPECT_EQ(m.num_faces(), 1u);
     EXPECT_EQ(m.vertices[1], Vec3(1, 0, 0));
+  }
+}
+
+//! Little-endian bytes of a value, for crafting binary files.
+template <class T>
+std::string le_bytes(T value) {
+  std::string out(sizeof(T), '\0');
+  std::memcpy(out.data(), &value, sizeof(T));
+  return out;  // the test machines are little-endian; checked below
+}
+
+std::string binary_stl(const std::vector<float>& corners, std::uint32_t announced) {
+  std::string out(80, ' ');
+  out += le_bytes(announced);
+  for (std::size_t i = 0; i + 9 <= corners.size(); i += 9) {
+    out += std::string(12, '\0');
+    for (std::size_t k = 0; k < 9; ++k) out += le_bytes(corners[i + k]);
+    out += std::string(2, '\0');
+  }
+  return out;
+}
+
+std::string binary_ply(std::uint32_t num_vertices, const std::vector<double>& coords, std::uint32_t num_faces,
+                       const std::vector<int>& indices) {
+  std::string out = "ply\nformat binary_little_endian 1.0\nelement vertex " + std::to_string(num_vertices) +
+                    "\nproperty double x\nproperty double y\nproperty double z\nelement face " +
+                    std::to_string(num_faces) + "\nproperty list uchar int vertex_indices\nend_header\n";
+  for (double c : coords) out += le_bytes(c);
+  for (std::size_t i = 0; i + 3 <= indices.size(); i += 3) {
+    out += le_bytes(std::uint8_t{3});
+    for (int k = 0; k < 3; ++k) out += le_bytes(std::int32_t{indices[i + static_cast<std::size_t>(k)]});
+  }
+  return out;
+}
+
+struct BadFile {
+  const char* label;
+  std::string name;   // file name (the extension selects the reader)
+  std::string bytes;  // content
+  bool io_error;      // IoError (true) or InvalidMeshError (false)
+  std::string message_part;
+};
+
+const std::string kTri = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+const std::string kOffTri = "0 0 0\n1 0 0\n0 1 0\n";
+const float kNanF = std::numeric_limits<float>::quiet_NaN();
+const double kInf = std::numeric_limits<double>::infinity();
+
+std::vector<BadFile> bad_files() {
+  return {
+      {"empty", "empty.obj", "", true, "empty"},
+      {"unknown format", "mesh.xyz", "hello\nworld\n", true, "unknown mesh format"},
+      {"no faces obj", "points.obj", kTri, false, "no faces"},
+      {"no faces off", "points.off", "OFF\n3 0 0\n" + kOffTri, false, "no faces"},
+      {"no faces ply", "points.ply", binary_ply(3, {0, 0, 0, 1, 0, 0, 0, 1, 0}, 0, {}), false, "no faces"},
+      {"nan obj", "nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n", false, "non-finite"},
+      {"inf obj", "inf.obj", "v 0 0 0\nv 1 -inf 0\nv 0 1 0\nf 1 2 3\n", false, "non-finite"},
+      {"overflow obj", "huge.obj", "v 0 0 0\nv 1 1e999 0\nv 0 1 0\nf 1 2 3\n", false, "non-finite"},
+      {"nan off", "nan.off", "OFF\n3 1 0\n0 0 0\n1 0 NaN\n0 1 0\n3 0 1 2\n", false, "non-finite"},
+      {"inf ply", "inf.ply", binary_ply(3, {0, 0, 0, 1, 0, 0, 0, kInf, 0}, 1, {0, 1, 2}), false, "non-finite"},
+      {"nan stl", "nan.stl", binary_stl({0, 0, 0, 1, 0, 0, 0, kNanF, 0}, 1), false, "non-finite"},
+      {"index out of range obj", "range.obj", kTri + "f 1 2 3\nf 1 2 4\n", false,
+       "range.obj:5: face index 4 out of range (file has 3 vertices)"},
+      {"negative index out of range obj", "negative.obj", kTri + "f -1 -2 -4\n", false, "face index -4 out of range"},
+      {"index zero obj", "zero.obj", kTri + "f 0 1 2\n", false, "face index 0 out of range"},
+      {"index out of range off", "range.off", "OFF\n3 1 0\n" + kOffTri + "3 0 1 3\n", false,
+       "range.off:6: face index 3 out of range"},
+      {"negative index off", "negative.off", "OFF\n3 1 0\n" + kOffTri + "3 0 -1 2\n", false,
+       "face index -1 out of range"},
+      {"index out of range ply", "range.ply", binary_ply(3, {0, 0, 0, 1, 0, 0, 0, 1, 0}, 1, {0, 1, 7}), false,
+       "face index 7 out of range"},
+      {"two corners obj", "two.obj", kTri + "f 1 2\n", false, "face with 2 corners"},
+      {"two corners off", "two.off", "OFF\n3 1 0\n" + kOffTri + "2 0 1\n", false, "has 2 corners"},
+      {"two corners ply", "two.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+       "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n" + kOffTri + "2 0 1\n",
+       false, "has 2 corners"},
+      {"two coordinates obj", "short.obj", "v 0 0\n", true, "short.obj:1: expected 3 coordinates after 'v'"},
+      {"not a number obj", "word.obj", "v 0 zero 0\n", true, "expected a number after 'v', got 'zero'"},
+      {"bad corner obj", "corner.obj", kTri + "f 1 2 x3\n", true, "expected a vertex index"},
+      {"truncated header off", "header.off", "OFF\n3", true, "header"},
+      {"bad keyword off", "keyword.off", "MESH\n3 1 0\n", true, "expected an OFF header"},
+      {"counts larger than file off", "counts.off", "OFF\n1000000000 1 0\n" + kOffTri, true,
+       "announces 1000000000 vertices"},
+      {"file ends early off", "early.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n", true, "file ends at face 0 of 1"},
+      {"truncated header ply", "header.ply", "ply\nformat ascii 1.0\nelement vertex 3\n", true, "end_header"},
+      {"bad type ply", "type.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float80 x\nend_header\n", true,
+       "property TYPE NAME"},
+      {"count larger than file ply", "count.ply", binary_ply(4000000000u, {0, 0, 0}, 1, {0, 1, 2}), true,
+       "declares 4000000000 records"},
+      {"truncated body ply", "body.ply", binary_ply(3, {0, 0, 0, 1, 0, 0, 0, 1, 0}, 1, {0, 1, 2}).substr(0, 250), true,
+       "truncated"},
+      {"count larger than file stl", "count.stl", binary_stl({0, 0, 0, 1, 0, 0, 0, 1, 0}, 1000000000), true,
+       "announces 1000000000 triangles"},
+      {"short binary stl", "short.stl", "abc", true, "not an STL file"},
+      {"truncated ascii stl", "trunc.stl", "solid x\n facet normal 0 0 1\n outer loop\n vertex 0 0 0\n", true,
+       "expected 'vertex' or 'endloop'"},
+  };
+}
+
+TEST(ReadMesh, BadFilesGiveTheRightErrorAndMessage) {
+  ASSERT_EQ(le_bytes(std::uint16_t{1})[0], 1) << "crafting helpers assume a little-endian machine";
+  const auto dir = test::temp_dir();
+  for (const BadFile& bad : bad_files()) {
+    SCOPED_TRACE(bad.label);
+    const auto path = write_file(dir / bad.name, bad.bytes);
+    try {
+      read_mesh(path);
+      ADD_FAILURE() << "no exception";
+    } catch (const IoError& e) {
+      EXPECT_TRUE(bad.io_error) << "IoError instead of InvalidMeshError: " << e.what();
+      EXPECT_THAT(e.what(), ::testing::HasSubstr(bad.message_part));
+      EXPECT_THAT(e.what(), ::testing::HasSubstr(bad.name));
+    } catch (const InvalidMeshError& e) {
+      EXPECT_FALSE(bad.io_error) << "InvalidMeshError instead of IoError: " << e.what();
+      EXPECT_THAT(e.what(), ::testing::HasSubstr(bad.message_part));
+      EXPECT_THAT(e.what(), ::testing::HasSubstr(bad.name));
+    }
+  }
+}
+
+TEST(ReadMesh, MissingFileAndFolderAreIoErrors) {
+  EXPECT_THROW(read_mesh(test::temp_dir() / "absent.obj"), IoError);
+  EXPECT_THROW(read_mesh(test::temp_dir()), IoError);
+}
+
+TEST(ReadMesh, UnknownExtensionIsDetectedByContent) {
+  const auto dir = test::temp_dir();
+  const std::pair<const char*, MeshFormat> cases[] = {
+      {"formats/cross_ascii.ply", MeshFormat::Ply},   {"formats/part_ascii.stl", MeshFormat::Stl},
+      {"formats/knight_binary.stl", MeshFormat::Stl}, {"cross.off", MeshFormat::Off},
+      {"spot.obj", MeshFormat::Obj}};
+  for (const auto& [file, format] : cases) {
+    SCOPED_TRACE(file);
+    const auto copy = dir / (std::filesystem::path(file).stem().string() + ".mesh");
+    std::filesystem::copy_file(data_path(file), copy, std::filesystem::copy_options::overwrite_existing);
+    ReadInfo info;
+    const Mesh mesh = read_mesh(copy, &info);
+    EXPECT_EQ(info.format, format);
+    EXPECT_EQ(mesh.num_faces(), read_mesh(data_path(file)).num_faces());
   }
 }
 

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "subfab/core/error.h"
+#include "mesh/mesh_compare.h"
 #include "subfab/mesh/read_mesh.h"
 #include "test_support.h"
 
@@ -45,6 +46,40 @@ TEST(WriteMesh, OffRoundTripIsExact) {
   const auto path = test::temp_dir() / "out.OFF";  // extension case does not matter
   write_mesh(mesh, path);
   expect_same_mesh(mesh, read_mesh(path));
+}
+
+TEST(WriteMesh, PlyRoundTripIsExact) {
+  const Mesh mesh = awkward_mesh();
+  const auto path = test::temp_dir() / "out.ply";
+  write_mesh(mesh, path);
+  ReadInfo info;
+  expect_same_mesh(mesh, read_mesh(path, &info));
+  EXPECT_EQ(info.format, MeshFormat::Ply);
+}
+
+TEST(WriteMesh, StlRoundTripIsFloat32Exact) {
+  for (const char* name : {"decimated_knight.off", "fandisk.obj", "spot.obj"}) {
+    SCOPED_TRACE(name);
+    const Mesh mesh = read_mesh(test::data_path(name));
+    const auto path = test::temp_dir() / "out.stl";
+    write_mesh(mesh, path);
+    EXPECT_EQ(std::filesystem::file_size(path), 84 + 50 * mesh.num_faces());
+    ReadInfo info;
+    const Mesh back = read_mesh(path, &info);
+    EXPECT_EQ(back.num_faces(), mesh.num_faces());
+    EXPECT_EQ(back.num_vertices(), mesh.num_vertices());  // welding restores the shared vertices
+    EXPECT_EQ(test::sorted_corner_triangles(back, false), test::sorted_corner_triangles(mesh, true));
+  }
+}
+
+TEST(WriteMesh, EveryWriterRoundTripsADataModel) {
+  const Mesh mesh = read_mesh(test::data_path("fandisk.obj"));
+  for (const char* ext : {".obj", ".off", ".ply"}) {
+    SCOPED_TRACE(ext);
+    const auto path = test::temp_dir() / (std::string("fandisk") + ext);
+    write_mesh(mesh, path);
+    expect_same_mesh(mesh, read_mesh(path));
+  }
 }
 
 TEST(WriteMesh, UnknownExtensionIsAnIoError) {
