@@ -61,6 +61,17 @@ std::optional<Box3> conflict_region(const HeightBox& first, const HeightBox& sec
   return region;
 }
 
+std::vector<Box3> conflict_support(const HeightBox& first, const HeightBox& second) {
+  if (!conflict_region(first, second)) return {};
+  const int k = axis_dimension(second.axis);
+  Box3 lower = second.box;
+  if (axis_sign(second.axis) > 0)
+    lower.max[k] = first.box.max[k];
+  else
+    lower.min[k] = first.box.min[k];
+  return box_difference(lower, first.box, {0, 1, 2});
+}
+
 std::vector<int> strongly_connected_components(const std::vector<std::vector<int>>& out,
                                                const std::vector<char>& alive) {
   const std::size_t n = out.size();

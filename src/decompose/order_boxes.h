@@ -82,21 +82,30 @@ BoxOrderResult order_boxes(std::vector<HeightBox> boxes, const BoxOrderCallbacks
 //! the interiors do not overlap.
 std::vector<Box3> box_difference(const Box3& b, const Box3& cut, const std::array<int, 3>& dims);
 
-//! The open box where material of the solid makes carving `first` before
-//! `second` invalid (thesis Section 4.3.3, decided exactly by the caller):
-//! with d = second.axis along dimension k, first's face on the +d side lies at
-//! level h; when h is strictly between second's base and top along d and the
-//! interiors overlap, the region is (first ∩ second) across d times the part of
-//! second beyond h along d; otherwise nullopt (no conflict is possible).
-//! Reasoning: solid ∩ (B2 \ B1) is bounded by input triangles inside B2 (fine
-//! when B2 is valid), parts of B2's faces (fine) and parts of B1's faces with
-//! reversed normals; a face of B1 with outward normal e becomes one with
-//! normal -e, which violates the height field only for e = d (-d is allowed
-//! on the base plane only, and h > base); it is part of the block where the
-//! solid lies just beyond it, which for a valid B2 (its solid part is closed
-//! downwards along -d) happens iff the solid's interior meets this region.
-//! Coordinates are copied from the boxes (exact).
+//! Geometry of the conflict test (thesis Section 4.3.3; the solid decides
+//! it exactly in resolve_overlaps.cpp). Carving `first` (B1) before `second`
+//! (B2, axis d along dimension k) gives B2 the block K = solid ∩ (B2 \ B1).
+//! K is bounded by input triangles inside B2 (all facing d or sideways when
+//! B2 is valid), parts of B2's faces (fine) and parts of B1's faces with
+//! reversed normals: a face of B1 with outward normal e becomes one with
+//! normal -e, which can only break the height field for e = d, i.e. B1's face
+//! at level h on B2's +d side, and only when h is strictly between B2's base
+//! and top. Then K is invalid iff
+//!   (a) the solid's interior meets the open conflict_region(): the part of
+//!       B2 beyond h across the overlap of B1 and B2 (for a valid B2 the solid
+//!       in B2 is closed downwards along -d, so material there reaches B1's
+//!       face over an open patch: a face of K with normal -d at level h), and
+//!   (b) the solid's interior meets one of the conflict_support() boxes: the
+//!       part of B2 below h (along d) outside B1 (so K has material below h
+//!       and that face is not on K's base plane).
+//! Without (a) no face of K faces -d above B2's base; without (b) all of K
+//! lies beyond h and B1's face is K's base. Coordinates are copied from the
+//! boxes (exact). nullopt / empty when geometry alone rules a conflict out.
 std::optional<Box3> conflict_region(const HeightBox& first, const HeightBox& second);
+//! See conflict_region(): closed boxes with disjoint interiors whose interiors
+//! cover the part of second's box below first's +d face (along second's axis
+//! d) outside first's box. Empty when conflict_region() is nullopt.
+std::vector<Box3> conflict_support(const HeightBox& first, const HeightBox& second);
 
 //! Strongly connected components of a directed graph on vertices
 //! 0..n-1 (adjacency lists `out`; vertices with alive[v] == 0 are ignored):

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The graph part of overlap resolution, with synthetic geometry: the solid
 // fills all of space, so carving `first` before `second` is invalid exactly
-// when conflict_region() is not empty.
+// when conflict_region() and conflict_support() are not empty.
 #include "decompose/order_boxes.h"
 
 #include <gtest/gtest.h>
@@ -22,7 +22,9 @@ HeightBox hb(const Box3& b, Axis a) { return HeightBox{b, a, -1}; }
 
 BoxOrderCallbacks full_space_callbacks() {
   BoxOrderCallbacks cb;
-  cb.conflict = [](const HeightBox& a, const HeightBox& b) { return conflict_region(a, b).has_value(); };
+  cb.conflict = [](const HeightBox& a, const HeightBox& b) {
+    return conflict_region(a, b).has_value() && !conflict_support(a, b).empty();
+  };
   cb.size = [](const HeightBox& b) { return b.box.volume(); };
   return cb;
 }
@@ -68,6 +70,17 @@ TEST(ConflictRegion, DependsOnTheSecondBoxDirection) {
   ASSERT_TRUE(below);  // tall's bottom z = 0 lies strictly inside down's (-1, 1)
   EXPECT_EQ(below->min, Vec3(1, 0, -1));
   EXPECT_EQ(below->max, Vec3(2, 2, 0));
+  // Support: the part of `tall` below z = 1 outside `low`.
+  const std::vector<Box3> support = conflict_support(low, tall);
+  ASSERT_EQ(support.size(), 1u);
+  EXPECT_EQ(support[0].min, Vec3(0, 0, 0));
+  EXPECT_EQ(support[0].max, Vec3(1, 2, 1));
+  // A box whose lower part lies inside the first box: its remainder sits on
+  // the first box's top, which becomes its base (no conflict in full space).
+  const HeightBox bar = hb(make_box(0, 0, 0, 3, 1, 1), Axis::PosZ);
+  const HeightBox column = hb(make_box(0, 0, 0, 1, 1, 3), Axis::PosZ);
+  EXPECT_TRUE(conflict_region(bar, column));
+  EXPECT_TRUE(conflict_support(bar, column).empty());
   // Touching boxes never conflict.
   EXPECT_FALSE(conflict_region(hb(make_box(0, 0, 0, 1, 1, 1), Axis::PosZ), hb(make_box(1, 0, 0, 2, 1, 2), Axis::PosZ)));
 }
@@ -132,10 +145,14 @@ TEST(OrderBoxes, OneWayConflictOrdersTheBoxes) {
   expect_valid_order(r.ordered, cb);
 }
 
+std::vector<HeightBox> plus_pair() {
+  // Figure 4.5c: a +z box and a +x box crossing like a plus sign; each
+  // difference has material below the other box's face.
+  return {hb(make_box(0, 0, 1, 3, 1, 4), Axis::PosZ), hb(make_box(1, 0, 0, 5, 1, 2), Axis::PosX)};
+}
+
 TEST(OrderBoxes, TwoCycleOfFigure4_5cIsSplit) {
-  // Each difference is invalid: a +z box and a +x box crossing each other.
-  const std::vector<HeightBox> boxes = {hb(make_box(0, 0, 0, 3, 1, 3), Axis::PosZ),
-                                        hb(make_box(1, 0, 0, 4, 1, 2), Axis::PosX)};
+  const std::vector<HeightBox> boxes = plus_pair();
   const auto cb = full_space_callbacks();
   EXPECT_TRUE(cb.conflict(boxes[0], boxes[1]));
   EXPECT_TRUE(cb.conflict(boxes[1], boxes[0]));
@@ -150,9 +167,9 @@ TEST(OrderBoxes, TwoCycleOfFigure4_5cIsSplit) {
 
 TEST(OrderBoxes, ThreeCycleIsSplit) {
   // A -> B -> C -> A and no reverse edges.
-  const HeightBox a = hb(make_box(0, 0, 0, 2, 1, 3), Axis::PosX);
-  const HeightBox b = hb(make_box(0, 0, 0, 3, 2, 1), Axis::PosY);
-  const HeightBox c = hb(make_box(0, 0, 0, 1, 2, 2), Axis::PosZ);
+  const HeightBox a = hb(make_box(0, 2, 2, 3, 3, 5), Axis::PosX);
+  const HeightBox b = hb(make_box(1, 2, 0, 3, 4, 3), Axis::PosY);
+  const HeightBox c = hb(make_box(0, 2, 2, 2, 4, 4), Axis::PosZ);
   const auto cb = full_space_callbacks();
   ASSERT_TRUE(cb.conflict(a, b) && cb.conflict(b, c) && cb.conflict(c, a));
   ASSERT_FALSE(cb.conflict(b, a) || cb.conflict(c, b) || cb.conflict(a, c));
@@ -176,8 +193,7 @@ TEST(OrderBoxes, SmallestRootsFirst) {
 }
 
 TEST(OrderBoxes, DroppablePiecesAreLeftOut) {
-  const std::vector<HeightBox> boxes = {hb(make_box(0, 0, 0, 3, 1, 3), Axis::PosZ),
-                                        hb(make_box(1, 0, 0, 4, 1, 2), Axis::PosX)};
+  const std::vector<HeightBox> boxes = plus_pair();
   auto cb = full_space_callbacks();
   cb.droppable = [](const HeightBox&) { return true; };  // every piece
   const BoxOrderResult r = order_boxes(boxes, cb, {});
@@ -210,8 +226,7 @@ TEST(OrderBoxes, RandomBoxesGiveAValidDeterministicOrder) {
 }
 
 TEST(OrderBoxes, SplitLimitIsAnError) {
-  const std::vector<HeightBox> boxes = {hb(make_box(0, 0, 0, 3, 1, 3), Axis::PosZ),
-                                        hb(make_box(1, 0, 0, 4, 1, 2), Axis::PosX)};
+  const std::vector<HeightBox> boxes = plus_pair();
   BoxOrderOptions options;
   options.max_splits = 0;
   EXPECT_THROW(order_boxes(boxes, full_space_callbacks(), options), AlgorithmError);
