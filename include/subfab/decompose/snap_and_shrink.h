@@ -1,0 +1,59 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file snap_and_shrink.h
+//! Block snapping and shrinking (thesis Section 4.3.4, "Block Snapping and
+//! Shrinking"): before overlap resolution, align nearly coincident box faces
+//! and trim overlaps, so that the conflict graph has fewer edges and cycles
+//! and the carved blocks have fewer thin slivers.
+//!
+//! Outline of snap_and_shrink():
+//!   1. snap: candidate pairs of parallel faces of two boxes (opposite-facing:
+//!      A's +e face and B's -e face; or same-facing) whose distance is below
+//!      snap_distance and whose rectangles overlap across the axis; sorted by
+//!      distance (then box ids), each aligns one face onto the other: the move
+//!      that enlarges a box is tried first, then the one that shrinks. A move
+//!      is applied only if the moved box stays exactly valid (SolidIndex) and
+//!      every face it covered is still covered by some box; an aligned face is
+//!      not moved again;
+//!   2. shrink: for every pair of overlapping boxes (in index order), the
+//!      smallest trim of one box that removes the overlap (one face of one box
+//!      moved onto the other box's opposite face) such that every face stays
+//!      covered; repeated until nothing changes. Trimmed boxes are sub-boxes,
+//!      hence valid.
+//! Coverage means the cover stage's notion (SolidIndex::faces_covered: each
+//! triangle entirely inside some box); faces no input box covered are ignored.
+//! Deterministic.
+#pragma once
+
+#include <vector>
+
+#include "subfab/core/progress.h"
+#include "subfab/decompose/height_box.h"
+#include "subfab/mesh/mesh.h"
+
+namespace subfab {
+
+//! Options of snap_and_shrink().
+struct SnapShrinkOptions {
+  double snap_distance = -1;     // model units; < 0: the mesh's average edge length (one grid
+                                 // cell at grid factor 1); 0: no snapping
+  bool shrink = true;            // trim overlaps after snapping
+  int max_shrink_passes = 4;     // passes over all overlapping pairs (>= 0)
+  Progress* progress = nullptr;  // stage reporting (nullptr = silent)
+};
+
+//! Result of snap_and_shrink().
+struct SnapShrinkResult {
+  std::vector<HeightBox> boxes;  // same count and order as the input
+  int num_snapped = 0;           // face alignments applied
+  int num_shrunk = 0;            // overlap trims applied
+};
+
+//! Snaps and shrinks valid height boxes (thesis Section 4.3.4).
+//! \param mesh  closed, outward-oriented triangle mesh (canonical frame)
+//! \param boxes valid height boxes (e.g. the minimal cover)
+//! \return the adjusted boxes, all valid, covering every face the input covered
+//! \throw InvalidArgumentError if a box is invalid or has non-finite corners,
+//!        or max_shrink_passes < 0.
+SnapShrinkResult snap_and_shrink(const Mesh& mesh, std::vector<HeightBox> boxes, const SnapShrinkOptions& options);
+
+}  // namespace subfab
