@@ -28,6 +28,10 @@ using FacePair = std::pair<std::uint32_t, std::uint32_t>;
 // Candidate pairs are tested in batches of this size, which bounds the memory
 // even when many bounding boxes overlap.
 constexpr std::size_t kBatch = 1 << 20;
+// Below this many boxes the box intersection compares all pairs directly
+// (CGAL's own self-intersection code uses the same value; 5x faster than the
+// default of 10 on the 56k-face bunny).
+constexpr std::ptrdiff_t kBoxCutoff = 2000;
 
 Point point(const Mesh& mesh, int v) {
   const Vec3& p = mesh.vertices[static_cast<std::size_t>(v)];
@@ -60,6 +64,19 @@ bool faces_intersect(const Mesh& mesh, std::size_t f, std::size_t g) {
     const Point p = corner(s, opposite_s);
     const Point q = corner(t, opposite_t);
     return CGAL::coplanar(u, v, p, q) && CGAL::coplanar_orientation(u, v, p, q) == CGAL::POSITIVE;
+  }
+  if (num_shared == 1) {
+    // Quick exact rejection: if the other two corners of one face lie
+    // strictly on one side of the other face's plane, the faces meet only
+    // at the shared vertex.
+    const auto one_side = [&](const Triangle& a, const Triangle& b, int shared_b) {
+      const CGAL::Orientation o1 =
+          CGAL::orientation(corner(a, 0), corner(a, 1), corner(a, 2), corner(b, shared_b + 1));
+      const CGAL::Orientation o2 =
+          CGAL::orientation(corner(a, 0), corner(a, 1), corner(a, 2), corner(b, shared_b + 2));
+      return o1 == o2 && o1 != CGAL::COPLANAR;
+    };
+    if (one_side(s, t, shared_t[0]) || one_side(t, s, shared_s[0])) return false;
   }
   const Triangle3 ts(corner(s, 0), corner(s, 1), corner(s, 2));
   const Triangle3 tt(corner(t, 0), corner(t, 1), corner(t, 2));
@@ -102,13 +119,20 @@ CheckResult check_self_intersections(const Mesh& mesh, const CheckOptions& optio
     batch.clear();
   };
   const Triangle* base = mesh.faces.data();
-  CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const Box& x, const Box& y) {
-    auto f = static_cast<std::uint32_t>(x.handle() - base);
-    auto g = static_cast<std::uint32_t>(y.handle() - base);
-    if (f > g) std::swap(f, g);
-    batch.emplace_back(f, g);
-    if (batch.size() >= kBatch) test_batch();
-  });
+  // Sorting pointers is cheaper than sorting the boxes themselves.
+  std::vector<const Box*> box_pointers;
+  box_pointers.reserve(boxes.size());
+  for (const Box& box : boxes) box_pointers.push_back(&box);
+  CGAL::box_self_intersection_d(
+      box_pointers.begin(), box_pointers.end(),
+      [&](const Box* x, const Box* y) {
+        auto f = static_cast<std::uint32_t>(x->handle() - base);
+        auto g = static_cast<std::uint32_t>(y->handle() - base);
+        if (f > g) std::swap(f, g);
+        batch.emplace_back(f, g);
+        if (batch.size() >= kBatch) test_batch();
+      },
+      CGAL::Box_intersection_d::Box_traits_d<const Box*>(), kBoxCutoff);
   test_batch();
 
   std::sort(intersecting.begin(), intersecting.end());
