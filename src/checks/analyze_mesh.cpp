@@ -75,12 +75,14 @@ MeshReport analyze_mesh(const Mesh& mesh, const AnalyzeOptions& options) {
   report.checks.push_back(check_face_indices(mesh, o));
   const bool finite = report.checks[0].passed();
   const bool indices = report.checks[1].passed();
-  if (!indices) {
+  if (!indices || mesh.faces.empty()) {
+    const char* reason =
+        indices ? "the mesh has no faces" : "some faces refer to vertices that do not exist";
     for (const char* name : {"degenerate_faces", "duplicate_faces", "boundary_edges",
                              "non_manifold_edges", "non_manifold_vertices",
                              "consistent_orientation", "outward_orientation", "components",
                              "self_intersections"})
-      report.checks.push_back(skipped(name, "some faces refer to vertices that do not exist"));
+      report.checks.push_back(skipped(name, reason));
     return report;
   }
 

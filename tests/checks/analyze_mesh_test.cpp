@@ -84,6 +84,14 @@ TEST(AnalyzeMesh, BadIndicesSkipEverythingElse) {
   EXPECT_FALSE(r.bbox);
 }
 
+TEST(AnalyzeMesh, EmptyMeshIsNotCalledClosed) {
+  const MeshReport r = analyze_mesh(Mesh{});
+  EXPECT_FALSE(r.closed);
+  EXPECT_FALSE(r.genus);
+  EXPECT_EQ(r.find("boundary_edges")->status, CheckStatus::Skipped);
+  EXPECT_NE(r.find("boundary_edges")->message.find("no faces"), std::string::npos);
+}
+
 TEST(AnalyzeMesh, NanCoordinatesSkipGeometry) {
   Mesh m = test::cube();
   m.vertices[2].z() = std::numeric_limits<double>::quiet_NaN();

@@ -50,8 +50,8 @@ struct MeshReport {
 };
 
 //! Runs every input check on `mesh` and computes its measures. Checks whose
-//! preconditions fail are reported as skipped (bad indices: everything
-//! else; non-finite coordinates: the geometric checks and measures; inward
+//! preconditions fail are reported as skipped (bad indices or no faces:
+//! everything else; non-finite coordinates: the geometric checks and measures; inward
 //! orientation: only decided on closed, consistently oriented meshes).
 //! Never throws on a bad mesh: the report says what is wrong.
 //! Genus = sum over components of (2 - (V - E + F)) / 2.
