@@ -53,10 +53,6 @@ void print_table(const std::string& path, const ReadInfo& read, const MeshReport
   row("edges", std::to_string(r.num_edges));
   if (read.polygons_triangulated > 0)
     row("triangulated", std::to_string(read.polygons_triangulated) + " polygons");
-  if (read.unreferenced_removed > 0)
-    row("dropped", std::to_string(read.unreferenced_removed) + " unreferenced vertices");
-  if (read.vertices_welded > 0)
-    row("welded", std::to_string(read.vertices_welded) + " coincident vertices");
   if (r.bbox && !r.bbox->is_empty()) {
     row("bbox min", vec(r.bbox->min));
     row("bbox max", vec(r.bbox->max));
@@ -78,6 +74,7 @@ void print_table(const std::string& path, const ReadInfo& read, const MeshReport
     num_failed += check.failed() ? 1 : 0;
     out << "  " << tag << "  " << std::left << std::setw(24) << check.name << check.message << "\n";
   }
+  // The reader's remarks: dropped unreferenced vertices, welded STL corners, ...
   for (const auto& note : read.notes) out << "note: " << note << "\n";
   if (num_failed == 0)
     out << "all checks passed: usable as a closed solid\n";
@@ -96,6 +93,7 @@ int run_info(const InfoArgs& args) {
     nlohmann::json json = report_to_json(report);
     json["file"] = args.mesh;
     json["format"] = format_name(read.format);
+    json["notes"] = read.notes;
     std::cout << json.dump(2) << "\n";
   } else {
     print_table(args.mesh, read, report);
