@@ -2,6 +2,7 @@
 #include "subfab/unfold/delete_facets.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <optional>
 #include <set>
@@ -59,8 +60,9 @@ struct HalfLine {
 
 class HoleCloser {
  public:
-  HoleCloser(ExactPolyMesh& mesh, const std::vector<int>& region, double max_extension)
-      : mesh_(mesh), region_(region), max_extension_(max_extension) {}
+  HoleCloser(ExactPolyMesh& mesh, const std::unordered_map<std::uint64_t, int>& owner,
+             const std::vector<int>& region, double max_extension)
+      : mesh_(mesh), owner_(owner), region_(region), max_extension_(max_extension) {}
 
   // Returns "" on success (mesh modified, region facets dead), else the reason
   // (mesh possibly half-modified: the caller restores it).
@@ -70,7 +72,7 @@ class HoleCloser {
       if (!mesh_.facets[f].alive) return "facet " + std::to_string(f) + " no longer exists";
       if (mesh_.facets[f].loops.size() > 1) return "facet " + std::to_string(f) + " has holes";
     }
-    const auto owner = edge_owners(mesh_);
+    const auto& owner = owner_;
     // Boundary of the region (region loops are CCW from outside).
     std::map<int, int> next;
     for (int f : region_)
@@ -123,10 +125,12 @@ class HoleCloser {
       buffer_.push_back(std::move(entry));
       r += len;
     }
-    QVec centroid{Q(0), Q(0), Q(0)};
-    for (int v : cycle) centroid = centroid + mesh_.points[v];
-    centroid = (Q(1) / Q(static_cast<double>(m))) * centroid;
-    centroid_ = centroid;
+    cycle_ = cycle;
+    region_normal_ = Vec3::Zero();
+    for (int f : region_) {
+      const auto& l = mesh_.facets[f].loops[0];
+      for (std::size_t i = 0; i < l.size(); ++i) region_normal_ += mesh_.approx[l[i]].cross(mesh_.approx[l[(i + 1) % l.size()]]);
+    }
     const std::size_t k = buffer_.size();
     for (std::size_t i = 0; i < k; ++i) {
       auto line = initial_half_line(buffer_[i], buffer_[(i + 1) % k], owner);
@@ -170,13 +174,32 @@ class HoleCloser {
         return HalfLine{o, d};
       }
     }
-    const Q s = dot(d, centroid_ - mesh_.points[o]);
-    if (CGAL::is_zero(s)) {
+    // No shared edge: the new edge must run into the corner of the deleted
+    // region at o. Seen along the region's normal, that corner spans from
+    // the outgoing boundary edge counter-clockwise to the incoming one.
+    const std::size_t j = static_cast<std::size_t>(std::find(cycle_.begin(), cycle_.end(), o) - cycle_.begin());
+    const std::size_t m = cycle_.size();
+    const Vec3 x = mesh_.approx[o];
+    const Vec3 nr = region_normal_.normalized();
+    auto flat = [&](const Vec3& v) { return Vec3(v - v.dot(nr) * nr); };
+    const Vec3 u1 = flat(mesh_.approx[cycle_[(j + 1) % m]] - x).normalized();
+    const Vec3 u2 = flat(mesh_.approx[cycle_[(j + m - 1) % m]] - x).normalized();
+    auto ccw_angle = [&](const Vec3& from, const Vec3& to) {
+      double a = std::atan2(nr.dot(from.cross(to)), from.dot(to));
+      return a < 0 ? a + 2 * 3.14159265358979323846 : a;
+    };
+    const double sector = ccw_angle(u1, u2);
+    const Vec3 dv = flat(Vec3(CGAL::to_double(d.x), CGAL::to_double(d.y), CGAL::to_double(d.z))).normalized();
+    const double half = 0.5 * sector;
+    // angular distance of +d and -d from the sector's bisector
+    auto off_bisector = [&](const Vec3& v) { return std::abs(ccw_angle(u1, v) - half); };
+    const double plus = off_bisector(dv), minus = off_bisector(-dv);
+    if (!(dv.norm() > 0.5) || std::abs(plus - minus) < 1e-9) {
       reason_ = "cannot tell which way the edge between facets " + std::to_string(a.facet) + " and " +
                 std::to_string(b.facet) + " extends";
       return std::nullopt;
     }
-    if (s < 0) d = Q(-1) * d;
+    if (minus < plus) d = Q(-1) * d;
     return HalfLine{o, d};
   }
 
@@ -186,7 +209,7 @@ class HoleCloser {
     QVec p;
     Q key;
   };
-  std::optional<Closure> intersect(const HalfLine& r1, const HalfLine& r2) const {
+  std::optional<Closure> intersect(const HalfLine& r1, const HalfLine& r2, bool full_lines = false) const {
     const QVec& o1 = mesh_.points[r1.origin];
     const QVec& o2 = mesh_.points[r2.origin];
     if (r1.origin == r2.origin) return Closure{o1, Q(0)};
@@ -196,7 +219,7 @@ class HoleCloser {
     const Q cc = dot(c, c);
     const Q t = dot(cross(w, r2.dir), c) / cc;
     const Q s = dot(cross(w, r1.dir), c) / cc;
-    if (t < 0 || s < 0) return std::nullopt;
+    if (!full_lines && (t < 0 || s < 0)) return std::nullopt;
     const QVec p = o1 + t * r1.dir;
     if (!(p == o2 + s * r2.dir)) return std::nullopt;  // skew lines (not coplanar)
     const QVec a = p - o1, b = p - o2;
@@ -238,14 +261,17 @@ class HoleCloser {
     const std::size_t k = buffer_.size();
     std::optional<std::size_t> best;
     std::optional<Closure> best_closure;
-    for (std::size_t i = 0; i < k; ++i) {
-      const auto c = intersect(lines_[(i + k - 1) % k], lines_[i]);
-      if (!c || !within_extension(c->p)) continue;
-      if (!best_closure || c->key < best_closure->key) {
-        best = i;
-        best_closure = c;
+    // Half-lines first; when no two meet, whole lines (the exact validation
+    // afterwards rejects a closure that folds the surface over).
+    for (int pass = 0; pass < 2 && !best; ++pass)
+      for (std::size_t i = 0; i < k; ++i) {
+        const auto c = intersect(lines_[(i + k - 1) % k], lines_[i], pass == 1);
+        if (!c || !within_extension(c->p)) continue;
+        if (!best_closure || c->key < best_closure->key) {
+          best = i;
+          best_closure = c;
+        }
       }
-    }
     if (!best) return "no two adjacent half-lines meet: the neighbourhood cannot be closed by extending its facets";
     const std::size_t i = *best;
     const std::size_t ip = (i + k - 1) % k, in = (i + 1) % k;
@@ -279,14 +305,16 @@ class HoleCloser {
   }
 
   std::string finish_three() {
-    const auto c = intersect(lines_[0], lines_[1]);  // closes entry 1
-    if (!c) return "the last three facets around the hole do not meet in a point";
-    const HalfLine& r = lines_[2];
-    const QVec w = c->p - mesh_.points[r.origin];
-    if (!is_zero(cross(w, r.dir)) || dot(w, r.dir) < 0)
-      return "the last three facets around the hole do not meet in a point";
-    if (!within_extension(c->p)) return "closing the hole would move the surface too far";
-    const int p = point_id(c->p, {lines_[0].origin, lines_[1].origin, lines_[2].origin});
+    // The three planes meet in one point (or the hole cannot be closed).
+    const QVec n0 = normal(buffer_[0].facet), n1 = normal(buffer_[1].facet), n2 = normal(buffer_[2].facet);
+    const QVec c12 = cross(n1, n2), c20 = cross(n2, n0), c01 = cross(n0, n1);
+    const Q det = dot(n0, c12);
+    if (CGAL::is_zero(det)) return "the last three facets around the hole do not meet in a point";
+    const QVec x = (Q(1) / det) * (mesh_.facets[buffer_[0].facet].offset * c12 +
+                                   mesh_.facets[buffer_[1].facet].offset * c20 +
+                                   mesh_.facets[buffer_[2].facet].offset * c01);
+    if (!within_extension(x)) return "closing the hole would move the surface too far";
+    const int p = point_id(x, {lines_[0].origin, lines_[1].origin, lines_[2].origin});
     for (const Entry& e : buffer_) close_entry(e, p);
     return "";
   }
@@ -333,10 +361,12 @@ class HoleCloser {
   }
 
   ExactPolyMesh& mesh_;
+  const std::unordered_map<std::uint64_t, int>& owner_;
   std::vector<int> region_;
   double max_extension_;
   std::vector<Vec3> region_points_;
-  QVec centroid_;
+  std::vector<int> cycle_;
+  Vec3 region_normal_ = Vec3::Zero();
   std::vector<Entry> buffer_;
   std::vector<HalfLine> lines_;  // lines_[i]: between buffer_[i] and buffer_[i+1]
   std::map<int, std::vector<int>> chains_;
@@ -345,8 +375,11 @@ class HoleCloser {
 };
 
 // Deletes `region` (facet ids) and validates; restores the mesh on failure.
-std::string try_delete(ExactPolyMesh& mesh, const std::vector<int>& region, double max_extension,
-                       std::size_t& num_merged) {
+// On success, `touched` (if given) receives the facets whose loops changed or
+// that died.
+std::string try_delete(ExactPolyMesh& mesh, const std::unordered_map<std::uint64_t, int>& owner,
+                       const std::vector<int>& region, double max_extension, std::size_t& num_merged,
+                       std::vector<int>* touched = nullptr) {
   const std::vector<QFacet> saved_facets = mesh.facets;
   const std::size_t saved_points = mesh.points.size();
   auto restore = [&] {
@@ -354,14 +387,14 @@ std::string try_delete(ExactPolyMesh& mesh, const std::vector<int>& region, doub
     mesh.points.resize(saved_points);
     mesh.approx.resize(saved_points);
   };
-  std::string reason = HoleCloser(mesh, region, max_extension).run();
+  std::string reason = HoleCloser(mesh, owner, region, max_extension).run();
   std::vector<int> changed;
   if (reason.empty()) {
     for (std::size_t f = 0; f < mesh.facets.size(); ++f)
       if (mesh.facets[f].alive && mesh.facets[f].loops != saved_facets[f].loops) changed.push_back(int(f));
     std::size_t alive_before = 0;
     for (const auto& f : mesh.facets) alive_before += f.alive;
-    const auto merged = merge_coplanar_neighbours(mesh);
+    const auto merged = merge_coplanar_neighbours(mesh, changed);
     if (!merged) {
       reason = "merging coplanar neighbours gives a pinched facet";
     } else {
@@ -381,7 +414,14 @@ std::string try_delete(ExactPolyMesh& mesh, const std::vector<int>& region, doub
     }
     if (!reason.empty()) reason = "the closed surface would be invalid: " + reason;
   }
-  if (!reason.empty()) restore();
+  if (!reason.empty()) {
+    restore();
+  } else if (touched) {
+    touched->clear();
+    for (std::size_t f = 0; f < mesh.facets.size(); ++f)
+      if (mesh.facets[f].alive != saved_facets[f].alive || mesh.facets[f].loops != saved_facets[f].loops)
+        touched->push_back(int(f));
+  }
   return reason;
 }
 
@@ -414,7 +454,7 @@ DeleteFacetsResult delete_facets(const PolyMesh& input, const DeleteFacetsOption
           if (left.erase(n)) group.push_back(n);
       std::sort(group.begin(), group.end());
       bool alive = std::all_of(group.begin(), group.end(), [&](int f) { return mesh.facets[f].alive; });
-      std::string reason = alive ? try_delete(mesh, group, 0.0, result.num_merged)
+      std::string reason = alive ? try_delete(mesh, edge_owners(mesh), group, 0.0, result.num_merged)
                                  : "a facet of the group was merged away by an earlier deletion";
       if (reason.empty()) {
         result.num_deleted += group.size();
@@ -426,9 +466,41 @@ DeleteFacetsResult delete_facets(const PolyMesh& input, const DeleteFacetsOption
   }
 
   if (options.min_facet_area > 0) {
+    // A failed attempt is retried only when a facet of the group or around
+    // it has changed since (versions bumped by every successful deletion).
+    std::vector<int> version(mesh.facets.size(), 0);
+    std::map<std::vector<int>, std::vector<int>> failed;  // group -> versions seen
     std::map<int, std::string> last_failure;
+    auto owner = edge_owners(mesh);
+    auto stamp = [&](const std::vector<int>& group) {
+      std::set<int> around(group.begin(), group.end());
+      for (int h : group)
+        for (int n : neighbours_of(mesh, owner, h)) around.insert(n);
+      std::vector<int> st;
+      for (int h : around) {
+        st.push_back(h);
+        st.push_back(version[h]);
+      }
+      return st;
+    };
+    std::vector<int> touched;
+    auto attempt = [&](const std::vector<int>& group, std::string* why) {
+      auto st = stamp(group);
+      const auto it = failed.find(group);
+      if (it != failed.end() && it->second == st) return false;
+      const std::string r = try_delete(mesh, owner, group, options.max_extension, result.num_merged, &touched);
+      if (r.empty()) {
+        for (int t : touched) ++version[t];
+        owner = edge_owners(mesh);
+        result.num_deleted += group.size();
+        for (int h : group) last_failure.erase(h);
+        return true;
+      }
+      failed[group] = std::move(st);
+      if (why) *why = r;
+      return false;
+    };
     bool progress_made = true;
-    std::set<std::vector<int>> failed_groups;
     while (progress_made) {
       progress_made = false;
       std::vector<std::pair<double, int>> small;
@@ -443,24 +515,17 @@ DeleteFacetsResult delete_facets(const PolyMesh& input, const DeleteFacetsOption
         if (!mesh.facets[f].alive || facet_area(mesh, f) >= options.min_facet_area) continue;
         if (options.progress) options.progress->update(idx, small.size());
         std::string reason;
-        if (!failed_groups.count({f})) {
-          reason = try_delete(mesh, {f}, options.max_extension, result.num_merged);
-          if (reason.empty()) {
-            ++result.num_deleted;
-            progress_made = true;
-            last_failure.erase(f);
-            continue;
-          }
-          failed_groups.insert({f});
-          last_failure[f] = reason;
+        if (attempt({f}, &reason)) {
+          progress_made = true;
+          continue;
         }
+        if (!reason.empty()) last_failure[f] = reason;
         // Groups with small neighbours (Figure 3.11), breadth first.
         const double group_limit = options.group_area_factor * options.min_facet_area;
         std::vector<std::vector<int>> frontier{{f}};
         bool deleted = false;
         for (int size = 2; size <= options.max_group_size && !deleted; ++size) {
           std::vector<std::vector<int>> grown;
-          const auto owner = edge_owners(mesh);
           for (const auto& g : frontier) {
             std::set<int> cand;
             for (int h : g)
@@ -473,23 +538,15 @@ DeleteFacetsResult delete_facets(const PolyMesh& input, const DeleteFacetsOption
               if (std::find(grown.begin(), grown.end(), ng) == grown.end()) grown.push_back(ng);
             }
           }
-          for (const auto& g : grown) {
-            if (failed_groups.count(g)) continue;
-            const std::string r = try_delete(mesh, g, options.max_extension, result.num_merged);
-            if (r.empty()) {
-              result.num_deleted += g.size();
+          for (const auto& g : grown)
+            if (attempt(g, nullptr)) {
               progress_made = deleted = true;
-              for (int h : g) last_failure.erase(h);
               break;
             }
-            failed_groups.insert(g);
-          }
           frontier = std::move(grown);
-          if (frontier.size() > 64) frontier.resize(64);
+          if (frontier.size() > 16) frontier.resize(16);
         }
-        if (deleted) continue;
       }
-      if (progress_made) failed_groups.clear();
     }
     for (const auto& [f, reason] : last_failure)
       if (mesh.facets[f].alive && facet_area(mesh, f) < options.min_facet_area)

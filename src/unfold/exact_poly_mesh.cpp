@@ -466,7 +466,9 @@ int find_root(std::vector<int>& parent, int x) {
 }
 }  // namespace
 
-std::optional<std::vector<int>> merge_coplanar_neighbours(ExactPolyMesh& mesh) {
+std::optional<std::vector<int>> merge_coplanar_neighbours(ExactPolyMesh& mesh, const std::vector<int>& only) {
+  std::vector<char> selected(mesh.facets.size(), only.empty() ? 1 : 0);
+  for (int f : only) selected[f] = 1;
   std::unordered_map<std::uint64_t, int> owner;
   for (std::size_t f = 0; f < mesh.facets.size(); ++f) {
     if (!mesh.facets[f].alive) continue;
@@ -483,6 +485,7 @@ std::optional<std::vector<int>> merge_coplanar_neighbours(ExactPolyMesh& mesh) {
       for (std::size_t i = 0; i < loop.size(); ++i) {
         const auto it = owner.find(edge_key(loop[(i + 1) % loop.size()], loop[i]));
         if (it == owner.end() || it->second == int(f)) continue;
+        if (!selected[f] && !selected[it->second]) continue;
         const auto& G = mesh.facets[it->second];
         if (G.normal_index == F.normal_index && G.offset == F.offset) {
           const int ra = find_root(parent, int(f)), rb = find_root(parent, it->second);

@@ -102,10 +102,11 @@ std::string check_facet_pair(const ExactPolyMesh& mesh, int a, int b);
 //! touches theirs; "" when all fine. Pass all ids for a global check.
 std::string check_no_intersections(const ExactPolyMesh& mesh, const std::vector<int>& facets);
 
-//! Merges every pair of adjacent facets on the same plane with the same
-//! normal (re-tracing the loops). Returns the ids of facets that changed, or
-//! nullopt when a merged region could not be traced (pinched).
-std::optional<std::vector<int>> merge_coplanar_neighbours(ExactPolyMesh& mesh);
+//! Merges adjacent facets on the same plane with the same normal
+//! (re-tracing the loops), for every adjacency that involves a facet of
+//! `only` (all facets when `only` is empty). Returns the ids of facets that
+//! changed, or nullopt when a merged region could not be traced (pinched).
+std::optional<std::vector<int>> merge_coplanar_neighbours(ExactPolyMesh& mesh, const std::vector<int>& only = {});
 
 //! Removes vertices where only two facets meet (they lie on a straight edge
 //! between the two). Returns the ids of facets that changed.
