@@ -170,6 +170,9 @@ class ObjParser {
 
   void finish() {
     const std::size_t num_vertices = mesh_.vertices.size();
+    if (num_vertices == 0 && info_.polygons_in_file == 0 && num_unknown_ > 0)
+      throw_io(name_, {},
+               "not an OBJ file: no vertex ('v') or face ('f') records; first unrecognised line: " + first_unknown_);
     if (max_index_ >= 0 && static_cast<std::size_t>(max_index_) >= num_vertices)
       throw_invalid(name_, Location::line(max_index_line_),
                     "face index " + std::to_string(max_index_ + 1) + " out of range (file has " +

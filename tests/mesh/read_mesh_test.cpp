@@ -201,6 +201,7 @@ std::vector<BadFile> bad_files() {
   return {
       {"empty", "empty.obj", "", true, "empty"},
       {"unknown format", "mesh.xyz", "hello\nworld\n", true, "unknown mesh format"},
+      {"not an obj", "text.obj", "hello\nworld\n", true, "not an OBJ file"},
       {"no faces obj", "points.obj", kTri, false, "no faces"},
       {"no faces off", "points.off", "OFF\n3 0 0\n" + kOffTri, false, "no faces"},
       {"no faces ply", "points.ply", binary_ply(3, {0, 0, 0, 1, 0, 0, 0, 1, 0}, 0, {}), false, "no faces"},
