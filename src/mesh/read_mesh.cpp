@@ -122,6 +122,7 @@ std::string read_whole_file(const std::filesystem::path& path, const std::string
   const auto status = std::filesystem::status(path, ec);
   if (ec || !std::filesystem::exists(status)) throw IoError(name + ": cannot open: no such file");
   if (std::filesystem::is_directory(status)) throw IoError(name + ": cannot read: it is a folder, not a mesh file");
+  if (!std::filesystem::is_regular_file(status)) throw IoError(name + ": cannot read: not a regular file");
   std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "rb"));
   if (!file) throw IoError(name + ": cannot open: " + std::strerror(errno));
   std::string data;

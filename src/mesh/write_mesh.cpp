@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <string>
 
@@ -113,6 +114,10 @@ std::string ply_binary(const Mesh& mesh) {
 std::string stl_binary(const Mesh& mesh, const std::string& name) {
   if (mesh.num_faces() > UINT32_MAX)
     throw IoError(name + ": cannot write binary STL: more than 2^32 triangles");
+  for (const auto& p : mesh.vertices)
+    if (p.cwiseAbs().maxCoeff() > std::numeric_limits<float>::max())
+      throw InvalidMeshError(name + ": cannot write binary STL: coordinate " + std::to_string(p.cwiseAbs().maxCoeff()) +
+                             " does not fit in float32; scale the mesh or use .ply");
   std::string out(80, ' ');
   const std::string header = "binary STL written by subfab";  // must not start with "solid"
   out.replace(0, header.size(), header);
@@ -155,6 +160,9 @@ void write_mesh(const Mesh& mesh, const std::filesystem::path& path) {
         throw InvalidMeshError(name + ": cannot write: face " + std::to_string(f) + " has vertex index " +
                                std::to_string(v) + ", out of range (" + std::to_string(mesh.num_vertices()) +
                                " vertices)");
+  for (std::size_t v = 0; v < mesh.num_vertices(); ++v)
+    if (!mesh.vertices[v].allFinite())
+      throw InvalidMeshError(name + ": cannot write: vertex " + std::to_string(v) + " has a non-finite coordinate");
   std::string ext = path.extension().string();
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   std::string bytes;

@@ -273,6 +273,7 @@ TEST(ReadMesh, BadFilesGiveTheRightErrorAndMessage) {
 TEST(ReadMesh, MissingFileAndFolderAreIoErrors) {
   EXPECT_THROW(read_mesh(test::temp_dir() / "absent.obj"), IoError);
   EXPECT_THROW(read_mesh(test::temp_dir()), IoError);
+  EXPECT_THROW(read_mesh("/dev/null"), IoError);  // not a regular file
 }
 
 TEST(ReadMesh, UnknownExtensionIsDetectedByContent) {

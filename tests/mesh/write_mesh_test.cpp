@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "subfab/core/error.h"
 #include "mesh/mesh_compare.h"
@@ -96,6 +97,19 @@ TEST(WriteMesh, OutOfRangeFaceIsRefused) {
   Mesh mesh = read_mesh(test::data_path("cross.off"));
   mesh.faces[3][1] = static_cast<int>(mesh.num_vertices());
   EXPECT_THROW(write_mesh(mesh, test::temp_dir() / "out.stl"), InvalidMeshError);
+}
+
+TEST(WriteMesh, NonFiniteOrTooLargeForStlIsRefused) {
+  Mesh mesh = read_mesh(test::data_path("cross.off"));
+  const auto dir = test::temp_dir();
+  mesh.vertices[5].y() = 1e300;  // fine in double formats, not in float32 STL
+  EXPECT_NO_THROW(write_mesh(mesh, dir / "big.ply"));
+  EXPECT_THROW(write_mesh(mesh, dir / "big.stl"), InvalidMeshError);
+  mesh.vertices[5].y() = std::numeric_limits<double>::quiet_NaN();
+  for (const char* name : {"nan.obj", "nan.off", "nan.ply", "nan.stl"}) {
+    EXPECT_THROW(write_mesh(mesh, dir / name), InvalidMeshError) << name;
+    EXPECT_FALSE(std::filesystem::exists(dir / name)) << name;
+  }
 }
 
 }  // namespace
