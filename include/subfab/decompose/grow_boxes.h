@@ -1,0 +1,77 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file grow_boxes.h
+//! Maximal height-field boxes covering the surface (thesis Section 4.3.2,
+//! "Maximal Height-Field Block Set", objective of Appendix B).
+//!
+//! Outline of grow_boxes():
+//!   1. fields = compute_fields(mesh) (or the caller's): Good grid points
+//!      near triangles facing each direction;
+//!   2. repeat in rounds until every face is covered:
+//!      a. seeds: up to `batch_size` faces not yet covered, spread over the
+//!         surface (farthest-point order from all previous seeds);
+//!      b. grow every seed in parallel: start from the seed triangle's
+//!         bounding box with the axis closest to its normal (other facing
+//!         axes if that fails); move box faces outward one grid plane at a
+//!         time, always the face whose new plane holds the most Good points
+//!         (the thesis's field integral, minimised greedily), each move
+//!         limited EXACTLY by first contact with a triangle facing away from
+//!         the axis (SolidIndex::push_face) and by the size limits; stop when
+//!         no move gains anything; shrink each side back to the covered
+//!         triangles when that loses no coverage;
+//!      c. coverage of the new boxes (exact rule of SolidIndex);
+//!   3. faces no axis can cover (a triangle larger than the local feature
+//!      size: a facing-away triangle crosses its own bounding box) are split
+//!      one-to-four (refine_mesh, Section 4.3.5) and seeding goes on, up to
+//!      `max_refinement_levels` times.
+//! Every box returned is exactly valid and every face of the returned mesh
+//! is covered by at least one box. Deterministic for any thread count.
+#pragma once
+
+#include <array>
+#include <limits>
+#include <vector>
+
+#include "subfab/core/progress.h"
+#include "subfab/decompose/compute_field.h"
+#include "subfab/decompose/height_box.h"
+#include "subfab/mesh/mesh.h"
+
+namespace subfab {
+
+//! Options of grow_boxes().
+struct GrowOptions {
+  double grid_factor = 1.0;  // grid spacing = average edge length x grid_factor (> 0); unused when `fields` is given
+  double max_height = std::numeric_limits<double>::infinity();  // max box extent along its axis, model units (inf = none)
+  Vec3 machine_size = Vec3::Constant(std::numeric_limits<double>::infinity());  // work volume X, Y, Z, model units:
+      // box extent along its axis <= Z, the two other extents fit X x Y in either order (inf = none)
+  int batch_size = 64;              // seeds grown in parallel per round (results do not depend on threads)
+  int max_refinement_levels = 8;    // rounds of local 1-to-4 refinement before giving up
+  const std::array<HeightField, 6>* fields = nullptr;  // precomputed fields of `mesh` (nullptr: computed here)
+  Progress* progress = nullptr;     // updates (faces covered / total) and warnings; nullptr = silent
+};
+
+//! Result of grow_boxes().
+struct GrowResult {
+  Mesh mesh;                               // the mesh the boxes refer to: the input, or its local refinement
+  std::vector<int> parent_face;            // per face of `mesh`: the input face it lies in
+  std::vector<HeightBox> boxes;            // exactly valid boxes (canonical frame, model units)
+  std::vector<std::vector<int>> covered;   // per box: sorted ids of the faces of `mesh` it covers
+  int num_refined_faces = 0;               // input faces that were split (1-to-4 or, for conformity, 1-to-2)
+  int num_rounds = 0;                      // seeding rounds
+  int num_seeds = 0;                       // seeds grown (including those that failed)
+};
+
+//! Grows maximal valid height-field boxes until they cover every triangle
+//! (thesis Section 4.3.2 with Appendix B's objective; Section 4.3.5 for the
+//! refinement). Boxes are valid in the exact sense of the decomposition: no
+//! triangle facing away from the box's axis meets its open interior. A face
+//! is covered when it lies in the closed box with the solid on the box's
+//! side (see src/decompose/solid_index.h).
+//! \param mesh closed, manifold, oriented, self-intersection-free triangle
+//!        mesh in the canonical frame (after orient), model units.
+//! \throw InvalidArgumentError on non-positive or NaN options.
+//! \throw AlgorithmError if a face cannot be covered even after
+//!        `max_refinement_levels` refinements (message names the face).
+GrowResult grow_boxes(const Mesh& mesh, const GrowOptions& options);
+
+}  // namespace subfab

@@ -1,0 +1,415 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "subfab/decompose/grow_boxes.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <optional>
+#include <sstream>
+#include <string>
+
+#include "decompose/solid_index.h"
+#include "subfab/core/error.h"
+#include "subfab/core/parallel.h"
+#include "subfab/decompose/refine_mesh.h"
+
+namespace subfab {
+namespace {
+
+using detail::SolidIndex;
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// --- Grid planes -------------------------------------------------------------
+
+//! Smallest plane index with coordinate > x (num_points if none).
+int plane_above(const GridGeometry& g, int dim, double x) {
+  const int n = g.num_points[static_cast<std::size_t>(dim)];
+  int i = static_cast<int>(std::floor((x - g.origin[dim]) / g.spacing));
+  i = std::clamp(i, -1, n);
+  while (i < n && (i < 0 || g.coordinate(dim, i) <= x)) ++i;
+  while (i > 0 && g.coordinate(dim, i - 1) > x) --i;
+  return i;
+}
+//! Largest plane index with coordinate < x (-1 if none).
+int plane_below(const GridGeometry& g, int dim, double x) {
+  const int n = g.num_points[static_cast<std::size_t>(dim)];
+  int i = static_cast<int>(std::ceil((x - g.origin[dim]) / g.spacing));
+  i = std::clamp(i, -1, n);
+  while (i >= 0 && (i >= n || g.coordinate(dim, i) >= x)) --i;
+  while (i + 1 < n && g.coordinate(dim, i + 1) < x) ++i;
+  return i;
+}
+//! Largest plane index with coordinate <= x, clamped to the grid.
+int plane_at_or_below(const GridGeometry& g, int dim, double x) {
+  const int n = g.num_points[static_cast<std::size_t>(dim)];
+  return std::clamp(plane_above(g, dim, x) - 1, 0, n - 1);
+}
+//! Smallest plane index with coordinate >= x, clamped to the grid.
+int plane_at_or_above(const GridGeometry& g, int dim, double x) {
+  const int n = g.num_points[static_cast<std::size_t>(dim)];
+  return std::clamp(plane_below(g, dim, x) + 1, 0, n - 1);
+}
+
+// --- Size limits -------------------------------------------------------------
+
+struct SizeLimits {
+  double max_height = kInf;   // along the axis
+  Vec3 machine = Vec3::Constant(kInf);
+
+  //! Largest extent allowed along `dim` for a box milled along `axis`,
+  //! given the box's current extents in the other dimensions.
+  double extent_limit(const Box3& b, Axis axis, int dim) const {
+    const int ad = axis_dimension(axis);
+    if (dim == ad) return std::min(max_height, machine.z());
+    const int other = 3 - ad - dim;
+    const double e = b.max[other] - b.min[other];
+    double limit = -kInf;
+    if (e <= machine.y()) limit = std::max(limit, machine.x());
+    if (e <= machine.x()) limit = std::max(limit, machine.y());
+    return limit;
+  }
+  bool fits(const Box3& b, Axis axis) const {
+    const int ad = axis_dimension(axis);
+    const int u = (ad + 1) % 3, v = (ad + 2) % 3;
+    const double h = b.max[ad] - b.min[ad], eu = b.max[u] - b.min[u], ev = b.max[v] - b.min[v];
+    if (h > std::min(max_height, machine.z())) return false;
+    return (eu <= machine.x() && ev <= machine.y()) || (eu <= machine.y() && ev <= machine.x());
+  }
+  //! `target` clamped so that the box's extent along dim stays within the limit.
+  double clamp(const Box3& b, Axis axis, int dim, int side, double target) const {
+    const double limit = extent_limit(b, axis, dim);
+    if (limit == kInf) return target;
+    if (side > 0) {
+      if (!(limit >= 0)) return b.max[dim];
+      double t = b.min[dim] + limit;
+      while (t - b.min[dim] > limit) t = std::nextafter(t, -kInf);
+      return std::max(b.max[dim], std::min(target, t));
+    }
+    if (!(limit >= 0)) return b.min[dim];
+    double t = b.max[dim] - limit;
+    while (b.max[dim] - t > limit) t = std::nextafter(t, kInf);
+    return std::min(b.min[dim], std::max(target, t));
+  }
+};
+
+// --- Growth of one box -------------------------------------------------------
+
+class Grower {
+ public:
+  Grower(const SolidIndex& index, const std::array<HeightField, 6>& fields, const SizeLimits& limits)
+      : index_(index), fields_(fields), grid_(fields[0].grid), limits_(limits) {
+    for (int d = 0; d < 3; ++d) {
+      domain_.min[d] = grid_.coordinate(d, 0);
+      domain_.max[d] = grid_.coordinate(d, grid_.num_points[static_cast<std::size_t>(d)] - 1);
+    }
+  }
+
+  //! The grown box for seed `face` and `axis`, or nullopt if no valid box
+  //! for that axis covers the face.
+  std::optional<Box3> grow(int face, Axis axis) const {
+    if (index_.facing_sign(face, axis) < 0) return std::nullopt;
+    Box3 b = index_.face_box(face);
+    if (!limits_.fits(b, axis)) return std::nullopt;
+    if (!index_.box_is_valid(b, axis)) return std::nullopt;
+    const Mesh& mesh = index_.mesh();
+    // 1. Give the box thickness where the seed is flat: push the side where
+    //    the solid is (opposite to the normal) first.
+    const Vec3 n = face_normal_scaled(mesh, static_cast<std::size_t>(face));
+    for (int dim = 0; dim < 3; ++dim) {
+      if (b.min[dim] != b.max[dim]) continue;
+      const int side = n[dim] > 0 ? -1 : +1;
+      move(b, axis, dim, side, next_plane(dim, side, b));
+      if (b.min[dim] == b.max[dim]) return std::nullopt;  // blocked at once: thin feature
+    }
+    // 2. Snap every side outward to its grid plane where possible.
+    std::array<bool, 6> frozen{};
+    for (int s = 0; s < 6; ++s) {
+      const int dim = s / 2, side = (s % 2) ? +1 : -1;
+      const double cur = side > 0 ? b.max[dim] : b.min[dim];
+      const double target = side > 0 ? grid_.coordinate(dim, plane_at_or_above(grid_, dim, cur))
+                                     : grid_.coordinate(dim, plane_at_or_below(grid_, dim, cur));
+      if (target == cur) continue;
+      if (!move(b, axis, dim, side, target)) frozen[static_cast<std::size_t>(s)] = true;
+    }
+    // 3. Greedy growth: move the side whose next plane holds the most Good
+    //    points (Appendix B's objective, minimised one plane at a time).
+    const HeightField& field = fields_[static_cast<std::size_t>(axis_index(axis))];
+    for (;;) {
+      int best = -1;
+      std::int64_t best_gain = 0;
+      double best_target = 0;
+      std::array<int, 3> lo{}, hi{};
+      for (int d = 0; d < 3; ++d) {
+        lo[static_cast<std::size_t>(d)] = plane_at_or_below(grid_, d, b.min[d]);
+        hi[static_cast<std::size_t>(d)] = plane_at_or_above(grid_, d, b.max[d]);
+      }
+      for (int s = 0; s < 6; ++s) {
+        if (frozen[static_cast<std::size_t>(s)]) continue;
+        const int dim = s / 2, side = (s % 2) ? +1 : -1;
+        const int p = side > 0 ? plane_above(grid_, dim, b.max[dim]) : plane_below(grid_, dim, b.min[dim]);
+        if (p < 0 || p >= grid_.num_points[static_cast<std::size_t>(dim)]) {
+          frozen[static_cast<std::size_t>(s)] = true;
+          continue;
+        }
+        const double target = limits_.clamp(b, axis, dim, side, grid_.coordinate(dim, p));
+        if (target == (side > 0 ? b.max[dim] : b.min[dim])) {
+          frozen[static_cast<std::size_t>(s)] = true;
+          continue;
+        }
+        std::array<int, 3> slo = lo, shi = hi;
+        slo[static_cast<std::size_t>(dim)] = shi[static_cast<std::size_t>(dim)] = p;
+        const std::int64_t gain = field.count_good(slo, shi);
+        if (gain > best_gain) {
+          best_gain = gain;
+          best = s;
+          best_target = target;
+        }
+      }
+      if (best < 0) break;
+      const int dim = best / 2, side = (best % 2) ? +1 : -1;
+      if (!move(b, axis, dim, side, best_target)) frozen[static_cast<std::size_t>(best)] = true;
+    }
+    if (!index_.face_covered(face, b, axis)) return std::nullopt;
+    shrink_to_coverage(b, axis);
+    return b;
+  }
+
+ private:
+  //! Next grid plane beyond the side (or the domain bound), size-clamped.
+  double next_plane(int dim, int side, const Box3& b) const {
+    if (side > 0) {
+      const int p = plane_above(grid_, dim, b.max[dim]);
+      return p < grid_.num_points[static_cast<std::size_t>(dim)] ? grid_.coordinate(dim, p)
+                                                                 : std::max(b.max[dim], domain_.max[dim]);
+    }
+    const int p = plane_below(grid_, dim, b.min[dim]);
+    return p >= 0 ? grid_.coordinate(dim, p) : std::min(b.min[dim], domain_.min[dim]);
+  }
+
+  //! Moves a side towards `target` (size-clamped) as far as exactly valid.
+  //! Returns true if it reached the target.
+  bool move(Box3& b, Axis axis, int dim, int side, double target) const {
+    const double clamped = limits_.clamp(b, axis, dim, side, target);
+    const double t = index_.push_face(b, axis, dim, side, clamped);
+    (side > 0 ? b.max[dim] : b.min[dim]) = t;
+    return t == target;
+  }
+
+  //! Moves each side in to the bounding box of the covered faces when no
+  //! covered face is lost (smaller boxes overlap less in later stages).
+  void shrink_to_coverage(Box3& b, Axis axis) const {
+    const std::vector<int> covered = index_.faces_covered(b, axis);
+    Box3 tight{Vec3::Constant(kInf), Vec3::Constant(-kInf)};
+    for (int f : covered) {
+      tight.min = tight.min.cwiseMin(index_.face_box(f).min);
+      tight.max = tight.max.cwiseMax(index_.face_box(f).max);
+    }
+    for (int s = 0; s < 6; ++s) {
+      const int dim = s / 2;
+      Box3 candidate = b;
+      if (s % 2)
+        candidate.max[dim] = tight.max[dim];
+      else
+        candidate.min[dim] = tight.min[dim];
+      if (candidate.min[dim] == b.min[dim] && candidate.max[dim] == b.max[dim]) continue;
+      if (index_.faces_covered(candidate, axis).size() == covered.size()) b = candidate;
+    }
+  }
+
+  const SolidIndex& index_;
+  const std::array<HeightField, 6>& fields_;
+  const GridGeometry& grid_;
+  SizeLimits limits_;
+  Box3 domain_;
+};
+
+//! Axes a face can be milled from (exact n.d >= 0), the closest first.
+std::vector<Axis> candidate_axes(const SolidIndex& index, int face) {
+  const Vec3 n = face_unit_normal(index.mesh(), static_cast<std::size_t>(face));
+  std::vector<Axis> axes;
+  axes.push_back(closest_axis(n));
+  std::vector<std::pair<double, Axis>> rest;
+  for (Axis a : kAllAxes)
+    if (a != axes[0] && index.facing_sign(face, a) >= 0) rest.emplace_back(-n.dot(axis_direction(a)), a);
+  std::stable_sort(rest.begin(), rest.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  if (index.facing_sign(face, axes[0]) < 0) axes.clear();
+  for (const auto& r : rest) axes.push_back(r.second);
+  return axes;
+}
+
+Vec3 centroid(const Mesh& mesh, int f) {
+  const Triangle& t = mesh.faces[static_cast<std::size_t>(f)];
+  return (mesh.vertices[static_cast<std::size_t>(t[0])] + mesh.vertices[static_cast<std::size_t>(t[1])] +
+          mesh.vertices[static_cast<std::size_t>(t[2])]) /
+         3.0;
+}
+
+void check_options(const GrowOptions& o) {
+  if (!(o.grid_factor > 0) || !std::isfinite(o.grid_factor))
+    throw InvalidArgumentError("grid factor must be a positive number (got " + std::to_string(o.grid_factor) + ")");
+  if (!(o.max_height > 0))
+    throw InvalidArgumentError("maximum block height must be positive (got " + std::to_string(o.max_height) + ")");
+  for (int k = 0; k < 3; ++k)
+    if (!(o.machine_size[k] > 0))
+      throw InvalidArgumentError("machine size must be positive in x, y and z (got " +
+                                 std::to_string(o.machine_size[k]) + ")");
+  if (o.batch_size < 1) throw InvalidArgumentError("batch size must be at least 1");
+  if (o.max_refinement_levels < 0) throw InvalidArgumentError("max refinement levels must be >= 0");
+}
+
+}  // namespace
+
+GrowResult grow_boxes(const Mesh& mesh, const GrowOptions& options) {
+  check_options(options);
+  if (mesh.empty()) throw InvalidMeshError("grow_boxes: the mesh has no faces");
+  std::array<HeightField, 6> own_fields;
+  if (!options.fields)
+    own_fields = compute_fields(mesh, FieldOptions{.grid_factor = options.grid_factor, .progress = nullptr});
+  const std::array<HeightField, 6>& fields = options.fields ? *options.fields : own_fields;
+  const SizeLimits limits{options.max_height, options.machine_size};
+  Progress* progress = options.progress;
+
+  GrowResult result;
+  result.mesh = mesh;
+  result.parent_face.resize(mesh.faces.size());
+  std::iota(result.parent_face.begin(), result.parent_face.end(), 0);
+  std::vector<Vec3> seed_points;  // centroids of all seeds so far (farthest-point order)
+
+  for (int level = 0;; ++level) {
+    const SolidIndex index(result.mesh);
+    const Grower grower(index, fields, limits);
+    const int nf = index.num_faces();
+    // Boxes from before a refinement stay valid (same surface); re-check
+    // exactly anyway since midpoints are rounded.
+    if (level > 0) {
+      std::vector<HeightBox> kept;
+      for (const HeightBox& hb : result.boxes)
+        if (index.box_is_valid(hb)) kept.push_back(hb);
+      result.boxes = std::move(kept);
+    }
+    std::vector<char> covered(static_cast<std::size_t>(nf), 0);
+    std::size_t num_covered = 0;
+    auto mark = [&](const std::vector<int>& faces) {
+      for (int f : faces)
+        if (!covered[static_cast<std::size_t>(f)]) {
+          covered[static_cast<std::size_t>(f)] = 1;
+          ++num_covered;
+        }
+    };
+    {
+      std::vector<std::vector<int>> lists(result.boxes.size());
+      parallel_for(0, result.boxes.size(), [&](std::size_t i) { lists[i] = index.faces_covered(result.boxes[i]); });
+      for (const auto& l : lists) mark(l);
+    }
+    std::vector<double> dist2(static_cast<std::size_t>(nf), kInf);
+    std::vector<Vec3> centres(static_cast<std::size_t>(nf));
+    for (int f = 0; f < nf; ++f) centres[static_cast<std::size_t>(f)] = centroid(result.mesh, f);
+    auto add_seed_point = [&](const Vec3& p) {
+      seed_points.push_back(p);
+      for (int f = 0; f < nf; ++f)
+        dist2[static_cast<std::size_t>(f)] =
+            std::min(dist2[static_cast<std::size_t>(f)], (centres[static_cast<std::size_t>(f)] - p).squaredNorm());
+    };
+    {
+      const std::vector<Vec3> previous = std::move(seed_points);
+      seed_points.clear();
+      for (const Vec3& p : previous) add_seed_point(p);
+    }
+    std::vector<char> failed(static_cast<std::size_t>(nf), 0);
+    if (progress) progress->update(num_covered, static_cast<std::size_t>(nf));
+
+    for (;;) {
+      // a. Seeds: farthest uncovered faces from all previous seeds.
+      std::vector<int> batch;
+      for (int k = 0; k < options.batch_size; ++k) {
+        int pick = -1;
+        for (int f = 0; f < nf; ++f) {
+          if (covered[static_cast<std::size_t>(f)] || failed[static_cast<std::size_t>(f)]) continue;
+          if (pick < 0 || dist2[static_cast<std::size_t>(f)] > dist2[static_cast<std::size_t>(pick)]) pick = f;
+        }
+        if (pick < 0) break;
+        batch.push_back(pick);
+        failed[static_cast<std::size_t>(pick)] = 2;  // taken (reset below when it grows)
+        add_seed_point(centres[static_cast<std::size_t>(pick)]);
+      }
+      if (batch.empty()) break;
+      ++result.num_rounds;
+      result.num_seeds += static_cast<int>(batch.size());
+      // b. Grow in parallel (one slot per seed).
+      std::vector<std::optional<HeightBox>> grown(batch.size());
+      std::vector<std::vector<int>> grown_cover(batch.size());
+      parallel_for(0, batch.size(), [&](std::size_t i) {
+        const int f = batch[i];
+        for (Axis a : candidate_axes(index, f)) {
+          if (auto box = grower.grow(f, a)) {
+            grown[i] = HeightBox{*box, a, f};
+            grown_cover[i] = index.faces_covered(*box, a);
+            return;
+          }
+        }
+      });
+      // c. Coverage, in seed order.
+      for (std::size_t i = 0; i < batch.size(); ++i) {
+        failed[static_cast<std::size_t>(batch[i])] = grown[i] ? 0 : 1;
+        if (!grown[i]) continue;
+        result.boxes.push_back(*grown[i]);
+        mark(grown_cover[i]);
+      }
+      if (progress) progress->update(num_covered, static_cast<std::size_t>(nf));
+    }
+
+    std::vector<int> uncovered;
+    for (int f = 0; f < nf; ++f)
+      if (!covered[static_cast<std::size_t>(f)]) uncovered.push_back(f);
+    if (uncovered.empty()) break;
+    if (level >= options.max_refinement_levels) {
+      const int f = uncovered.front();
+      std::ostringstream msg;
+      msg << "cannot cover face " << result.parent_face[static_cast<std::size_t>(f)] << " of the input (and "
+          << uncovered.size() - 1 << " other faces) with a valid height-field box even after "
+          << options.max_refinement_levels
+          << " rounds of local refinement: a triangle facing away from every direction it could be milled from "
+             "crosses its bounding box (a feature thinner than the triangles; the mesh may self-intersect)";
+      throw AlgorithmError(msg.str());
+    }
+    RefineResult refined = refine_mesh(result.mesh, uncovered);
+    const int num_split = refined.num_split_1to4 + refined.num_split_1to2;
+    result.num_refined_faces += num_split;
+    if (progress) {
+      std::ostringstream msg;
+      msg << uncovered.size() << " faces cannot be covered by a valid box (thin features): refined locally ("
+          << refined.num_split_1to4 << " faces split 1-to-4, " << refined.num_split_1to2 << " split 1-to-2)";
+      progress->warn(msg.str());
+    }
+    std::vector<int> parent(refined.parent.size());
+    for (std::size_t f = 0; f < parent.size(); ++f)
+      parent[f] = result.parent_face[static_cast<std::size_t>(refined.parent[f])];
+    result.parent_face = std::move(parent);
+    result.mesh = std::move(refined.mesh);
+  }
+
+  // Final coverage lists on the final mesh; identical boxes kept once.
+  {
+    std::vector<HeightBox> unique;
+    for (const HeightBox& hb : result.boxes) {
+      const bool duplicate = std::any_of(unique.begin(), unique.end(), [&](const HeightBox& u) {
+        return u.axis == hb.axis && u.box.min == hb.box.min && u.box.max == hb.box.max;
+      });
+      if (!duplicate) unique.push_back(hb);
+    }
+    result.boxes = std::move(unique);
+    const SolidIndex index(result.mesh);
+    result.covered.resize(result.boxes.size());
+    parallel_for(0, result.boxes.size(), [&](std::size_t i) { result.covered[i] = index.faces_covered(result.boxes[i]); });
+  }
+  if (progress) {
+    std::ostringstream msg;
+    msg << result.boxes.size() << " boxes grown from " << result.num_seeds << " seeds in " << result.num_rounds
+        << " rounds";
+    progress->info(msg.str());
+  }
+  return result;
+}
+
+}  // namespace subfab
