@@ -46,6 +46,13 @@ bool parse_double(const char*& p, const char* end, double& value);
 //! Values beyond +-2^62 saturate (they are out of any index range anyway).
 bool parse_int(const char*& p, const char* end, std::int64_t& value);
 
+//! s cut to 40 characters, bytes that are not printable ASCII shown as '?'
+//! (file content quoted in messages).
+std::string printable(std::string_view s);
+
+//! The whitespace-delimited token at p (at most 24 characters), printable.
+std::string token_at(const char* p, const char* end);
+
 //! Shortest readable rendering of a (possibly non-finite) double for messages.
 std::string number_text(double v);
 

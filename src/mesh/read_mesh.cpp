@@ -86,6 +86,19 @@ bool parse_int(const char*& p, const char* end, std::int64_t& value) {
   return true;
 }
 
+std::string printable(std::string_view s) {
+  std::string out(s.substr(0, 40));
+  for (char& c : out)
+    if (static_cast<unsigned char>(c) < 32 || static_cast<unsigned char>(c) > 126) c = '?';
+  return out;
+}
+
+std::string token_at(const char* p, const char* end) {
+  const char* q = p;
+  while (q < end && !is_space_or_newline(*q) && q - p < 24) ++q;
+  return printable(std::string_view(p, static_cast<std::size_t>(q - p)));
+}
+
 std::string number_text(double v) {
   char buffer[64];
   const auto [ptr, ec] = std::to_chars(buffer, buffer + sizeof buffer, v);

@@ -65,14 +65,7 @@ class OffParser {
   bool at_line_end() const { return p_ == end_ || *p_ == '\n'; }
   bool at_token_end() const { return p_ == end_ || is_space_or_newline(*p_) || *p_ == '#'; }
 
-  std::string token_here() const {
-    const char* q = p_;
-    while (q < end_ && !is_space_or_newline(*q) && q - p_ < 24) ++q;
-    std::string t(p_, q);
-    for (char& c : t)
-      if (static_cast<unsigned char>(c) < 32 || static_cast<unsigned char>(c) > 126) c = '?';
-    return t;
-  }
+  std::string token_here() const { return token_at(p_, end_); }
 
   std::int64_t read_count(const char* what) {
     skip_all();

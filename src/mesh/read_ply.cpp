@@ -86,13 +86,6 @@ std::vector<std::string_view> split_words(std::string_view line) {
   return words;
 }
 
-std::string printable(std::string_view s) {
-  std::string out(s.substr(0, 40));
-  for (char& c : out)
-    if (static_cast<unsigned char>(c) < 32 || static_cast<unsigned char>(c) > 126) c = '?';
-  return out;
-}
-
 //! Reads scalar values from the body, ascii or binary, never past its end.
 class BodyCursor {
  public:
@@ -196,11 +189,7 @@ class BodyCursor {
     return p_;
   }
   bool token_ended() const { return p_ == end_ || is_space_or_newline(*p_); }
-  std::string token_text() const {
-    const char* q = p_;
-    while (q < end_ && !is_space_or_newline(*q) && q - p_ < 24) ++q;
-    return printable(std::string_view(p_, static_cast<std::size_t>(q - p_)));
-  }
+  std::string token_text() const { return token_at(p_, end_); }
 
   template <class T>
   T load() {

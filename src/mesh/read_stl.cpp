@@ -105,17 +105,10 @@ class AsciiStlParser {
     return true;
   }
 
-  static std::string shown(std::string_view word) {
-    std::string s(word.substr(0, 24));
-    for (char& c : s)
-      if (static_cast<unsigned char>(c) < 32 || static_cast<unsigned char>(c) > 126) c = '?';
-    return s;
-  }
-
   //! "'word'" or "the end of the file" for messages.
   static std::string describe(std::string_view word) {
     if (word.empty()) return "the end of the file (truncated?)";
-    std::string s = shown(word);
+    std::string s = printable(word.substr(0, 24));
     s.insert(s.begin(), '\'');
     s.push_back('\'');
     return s;

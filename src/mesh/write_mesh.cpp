@@ -43,17 +43,22 @@ void append_le(std::string& out, T value) {
   out.append(bytes, sizeof(T));
 }
 
+//! "x y z" (exact shortest form of each double).
+void append_point(std::string& out, const Vec3& p) {
+  append_number(out, p.x());
+  out += ' ';
+  append_number(out, p.y());
+  out += ' ';
+  append_number(out, p.z());
+}
+
 std::string obj_text(const Mesh& mesh) {
   std::string out = "# written by subfab: " + std::to_string(mesh.num_vertices()) + " vertices, " +
                     std::to_string(mesh.num_faces()) + " faces\n";
   out.reserve(out.size() + mesh.num_vertices() * 64 + mesh.num_faces() * 24);
   for (const auto& p : mesh.vertices) {
     out += "v ";
-    append_number(out, p.x());
-    out += ' ';
-    append_number(out, p.y());
-    out += ' ';
-    append_number(out, p.z());
+    append_point(out, p);
     out += '\n';
   }
   for (const auto& t : mesh.faces) {
@@ -75,11 +80,7 @@ std::string off_text(const Mesh& mesh) {
   append_number(out, static_cast<std::int64_t>(mesh.num_faces()));
   out += " 0\n";
   for (const auto& p : mesh.vertices) {
-    append_number(out, p.x());
-    out += ' ';
-    append_number(out, p.y());
-    out += ' ';
-    append_number(out, p.z());
+    append_point(out, p);
     out += '\n';
   }
   for (const auto& t : mesh.faces) {
