@@ -56,6 +56,7 @@ void read_binary(std::string_view data, const std::string& name, Mesh& mesh, Rea
     throw_io(name, Location::byte(80),
              "binary STL header announces " + std::to_string(n) + " triangles (" + std::to_string(needed) +
                  " bytes) but the file has only " + std::to_string(data.size()) + " bytes (truncated file?)");
+  if (3 * n >= INT32_MAX) throw_io(name, Location::byte(80), "too many triangles (" + std::to_string(n) + ")");
   if (data.size() > needed)
     info.notes.push_back("ignored " + std::to_string(data.size() - needed) +
                          " bytes after the last triangle of the binary STL");

@@ -123,6 +123,15 @@ TEST(ReadObj, AllCornerForms) {
   EXPECT_EQ(info.polygons_triangulated, 1u);
 }
 
+TEST(ReadObj, SkippedRecordsAreCountedInTheNotes) {
+  ReadInfo info;
+  const Mesh mesh = read_bytes("notes.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2\ncstype bezier\nf 1 2 3\nfoo\n", &info);
+  EXPECT_EQ(mesh.num_faces(), 1u);
+  ASSERT_EQ(info.notes.size(), 2u);
+  EXPECT_THAT(info.notes[0], ::testing::HasSubstr("ignored 1 line/point records"));
+  EXPECT_THAT(info.notes[1], ::testing::HasSubstr("ignored 2 lines with unknown keywords (first: 'cstype' at line 5)"));
+}
+
 TEST(ReadOff, HeaderVariantsAndPolygons) {
   // Counts on the keyword line, comments, a quad with a face colour, COFF
   // vertex colours.
