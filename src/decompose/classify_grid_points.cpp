@@ -15,26 +15,6 @@ using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Point2 = Kernel::Point_2;
 using Point3 = Kernel::Point_3;
 
-//! Lowest index i in [0, n) with grid.coordinate(dim, i) >= value (n if none).
-int first_index_at_or_above(const GridGeometry& grid, int dim, double value) {
-  const int n = grid.num_points[static_cast<std::size_t>(dim)];
-  double guess = std::ceil((value - grid.origin[dim]) / grid.spacing);
-  int i = static_cast<int>(std::clamp(guess, 0.0, static_cast<double>(n)));
-  while (i > 0 && grid.coordinate(dim, i - 1) >= value) --i;
-  while (i < n && grid.coordinate(dim, i) < value) ++i;
-  return i;
-}
-
-//! Highest index i in [0, n) with grid.coordinate(dim, i) <= value (-1 if none).
-int last_index_at_or_below(const GridGeometry& grid, int dim, double value) {
-  const int n = grid.num_points[static_cast<std::size_t>(dim)];
-  double guess = std::floor((value - grid.origin[dim]) / grid.spacing);
-  int i = static_cast<int>(std::clamp(guess, -1.0, static_cast<double>(n - 1)));
-  while (i < n - 1 && grid.coordinate(dim, i + 1) <= value) ++i;
-  while (i >= 0 && grid.coordinate(dim, i) > value) --i;
-  return i;
-}
-
 //! Sign of orient2d(p, q, (qu, qv) + (e, e^2)) for an infinitesimal e > 0;
 //! never 0 when p != q.
 int perturbed_edge_sign(const Point2& p, const Point2& q, const Point2& query) {
@@ -76,8 +56,8 @@ LineBuckets bucket_faces(const Mesh& mesh, const GridGeometry& grid, int dim,
           lo_v = std::min(lo_v, p[v]);
           hi_v = std::max(hi_v, p[v]);
         }
-        ranges[f] = {first_index_at_or_above(grid, u, lo_u), last_index_at_or_below(grid, u, hi_u),
-                     first_index_at_or_above(grid, v, lo_v), last_index_at_or_below(grid, v, hi_v)};
+        ranges[f] = {grid.index_at_or_above(u, lo_u), grid.index_at_or_below(u, hi_u),
+                     grid.index_at_or_above(v, lo_v), grid.index_at_or_below(v, hi_v)};
       },
       1024);
   LineBuckets buckets;
@@ -195,7 +175,7 @@ std::vector<std::uint8_t> classify_grid_points(const Mesh& mesh, const GridGeome
       // First k above the crossing (monotone in k): guess from the rounded
       // position, then walk with the exact predicate.
       const double z = crossing_position(mesh, static_cast<std::size_t>(f), 2, x, y);
-      int k = first_index_at_or_above(grid, 2, z);
+      int k = grid.index_at_or_above(2, z);
       while (k > 0 && above(k - 1)) --k;
       while (k < nz && !above(k)) ++k;
       toggle[static_cast<std::size_t>(k)] ^= 1;

@@ -61,6 +61,24 @@ std::vector<std::uint8_t> mark_too_deep(const Mesh& mesh, const GridGeometry& gr
 
 }  // namespace
 
+int GridGeometry::index_at_or_below(int dim, double x) const {
+  const int n = num_points[static_cast<std::size_t>(dim)];
+  const double guess = std::floor((x - origin[dim]) / spacing);
+  int i = static_cast<int>(std::clamp(guess, -1.0, static_cast<double>(n - 1)));  // NaN-free for finite x
+  while (i < n - 1 && coordinate(dim, i + 1) <= x) ++i;
+  while (i >= 0 && coordinate(dim, i) > x) --i;
+  return i;
+}
+
+int GridGeometry::index_at_or_above(int dim, double x) const {
+  const int n = num_points[static_cast<std::size_t>(dim)];
+  const double guess = std::ceil((x - origin[dim]) / spacing);
+  int i = static_cast<int>(std::clamp(guess, 0.0, static_cast<double>(n)));
+  while (i > 0 && coordinate(dim, i - 1) >= x) --i;
+  while (i < n && coordinate(dim, i) < x) ++i;
+  return i;
+}
+
 GridGeometry make_grid(const Mesh& mesh, double grid_factor) {
   if (!(grid_factor > 0) || !std::isfinite(grid_factor))
     throw InvalidArgumentError("grid factor must be a positive number (got " + std::to_string(grid_factor) + ")");

@@ -11,6 +11,7 @@
 #include <cmath>
 
 #include "decompose/exact_normal_signs.h"
+#include "decompose/triangle_meets_closed_box.h"
 #include "subfab/core/parallel.h"
 
 namespace subfab::detail {
@@ -18,19 +19,12 @@ namespace {
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Point3 = Kernel::Point_3;
 
-//! Range of cells [lo, hi] along dim whose closed extent meets [min, max]
-//! (exact comparisons of the grid coordinates); empty when lo > hi.
+//! Range of cells [lo, hi] along dim whose closed extent [coord(c), coord(c + 1)]
+//! meets [min, max] (exact comparisons of the grid coordinates); empty when lo > hi.
 std::array<int, 2> cell_range(const GridGeometry& grid, int dim, double min, double max) {
   const int num_cells = grid.num_points[static_cast<std::size_t>(dim)] - 1;
-  // Cell c spans [coord(c), coord(c + 1)]: it meets [min, max] iff
-  // coord(c + 1) >= min and coord(c) <= max.
-  int lo = static_cast<int>(std::clamp(std::floor((min - grid.origin[dim]) / grid.spacing), 0.0, double(num_cells)));
-  while (lo > 0 && grid.coordinate(dim, lo) >= min) --lo;
-  while (lo < num_cells && grid.coordinate(dim, lo + 1) < min) ++lo;
-  int hi = static_cast<int>(std::clamp(std::floor((max - grid.origin[dim]) / grid.spacing), -1.0, double(num_cells - 1)));
-  while (hi < num_cells - 1 && grid.coordinate(dim, hi + 1) <= max) ++hi;
-  while (hi >= 0 && grid.coordinate(dim, hi) > max) --hi;
-  return {lo, hi};
+  // coord(c + 1) >= min  <=>  c + 1 >= index_at_or_above(min);  coord(c) <= max  <=>  c <= index_at_or_below(max).
+  return {std::max(grid.index_at_or_above(dim, min) - 1, 0), std::min(grid.index_at_or_below(dim, max), num_cells - 1)};
 }
 }  // namespace
 
@@ -65,11 +59,16 @@ std::vector<std::uint16_t> mark_triangle_cells(const Mesh& mesh, const GridGeome
         const bool single = range[0][0] == range[0][1] && range[1][0] == range[1][1] && range[2][0] == range[2][1];
         const Kernel::Triangle_3 triangle(Point3(a.x(), a.y(), a.z()), Point3(b.x(), b.y(), b.z()),
                                           Point3(c.x(), c.y(), c.z()));
+        // A zero-area triangle is tested as the segment or point it spans.
+        const bool degenerate = signs[f][0] == 0 && signs[f][1] == 0 && signs[f][2] == 0;
         for (int k = range[2][0]; k <= range[2][1]; ++k)
           for (int j = range[1][0]; j <= range[1][1]; ++j)
             for (int i = range[0][0]; i <= range[0][1]; ++i) {
               // A triangle whose bounding box lies in one closed cell meets it.
-              if (!single) {
+              if (!single && degenerate) {
+                const Box3 cell{grid.point(i, j, k), grid.point(i + 1, j + 1, k + 1)};
+                if (!triangle_meets_closed_box(a, b, c, cell)) continue;
+              } else if (!single) {
                 const Kernel::Iso_cuboid_3 cell(Point3(grid.coordinate(0, i), grid.coordinate(1, j), grid.coordinate(2, k)),
                                                 Point3(grid.coordinate(0, i + 1), grid.coordinate(1, j + 1),
                                                        grid.coordinate(2, k + 1)));

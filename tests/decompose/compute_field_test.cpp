@@ -10,6 +10,8 @@
 #include <random>
 
 #include "decompose/classify_grid_points.h"
+#include "decompose/exact_normal_signs.h"
+#include "decompose/mark_triangle_cells.h"
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
 #include "subfab/mesh/read_mesh.h"
@@ -146,6 +148,50 @@ TEST(ComputeFields, CubeForbiddenOnlyAtTheOppositeFace) {
       EXPECT_EQ(up.values[g.index(4, 4, 6)], FieldValue::Good);       // z = 1
     }
   }
+}
+
+// Every triangle marks the cell around its centroid: the corners are
+// Forbidden for the directions it faces away from, and not Free for the others.
+TEST(ComputeFields, RealModelTrianglesMarkTheCellAroundThem) {
+  const Mesh mesh = read_mesh(test::data_path("bunny_lowres.off"));
+  const auto fields = compute_fields(mesh, {});
+  const GridGeometry& g = fields[0].grid;
+  std::size_t num_away = 0;
+  for (std::size_t f = 0; f < mesh.num_faces(); ++f) {
+    const auto& t = mesh.faces[f];
+    const Vec3 a = mesh.vertices[static_cast<std::size_t>(t[0])], b = mesh.vertices[static_cast<std::size_t>(t[1])],
+               c = mesh.vertices[static_cast<std::size_t>(t[2])];
+    const Vec3 centroid = (a + b + c) / 3.0;
+    std::array<int, 3> cell{};
+    for (int d = 0; d < 3; ++d) cell[static_cast<std::size_t>(d)] = g.index_at_or_below(d, centroid[d]);
+    const auto signs = detail::exact_normal_signs(a, b, c);
+    for (Axis axis : kAllAxes) {
+      const bool away = signs[static_cast<std::size_t>(axis_dimension(axis))] * axis_sign(axis) < 0;
+      num_away += away;
+      for (int corner = 0; corner < 8; ++corner) {
+        const FieldValue v = fields[static_cast<std::size_t>(axis_index(axis))]
+                                 .values[g.index(cell[0] + (corner & 1), cell[1] + ((corner >> 1) & 1), cell[2] + ((corner >> 2) & 1))];
+        if (away)
+          ASSERT_EQ(v, FieldValue::Forbidden) << "face " << f << " " << axis_name(axis);
+        else
+          ASSERT_NE(v, FieldValue::Free) << "face " << f << " " << axis_name(axis);
+      }
+    }
+  }
+  EXPECT_GT(num_away, mesh.num_faces());
+}
+
+TEST(MarkTriangleCells, DegenerateTriangleMarksTheCellsOfItsSegment) {
+  Mesh sliver;
+  sliver.vertices = {Vec3(0.1, 0.1, 0.1), Vec3(0.9, 0.1, 0.1), Vec3(0.5, 0.1, 0.1)};
+  sliver.faces = {{0, 1, 2}};
+  const GridGeometry g = hand_grid(Vec3::Zero(), 0.25, {5, 5, 5});
+  const auto flags = detail::mark_triangle_cells(sliver, g);
+  const std::uint16_t all_zero = detail::cell_flag_zero(0) | detail::cell_flag_zero(1) | detail::cell_flag_zero(2);
+  for (int k = 0; k < 4; ++k)
+    for (int j = 0; j < 4; ++j)
+      for (int i = 0; i < 4; ++i)
+        EXPECT_EQ(flags[detail::cell_index(g, i, j, k)], (j == 0 && k == 0) ? all_zero : 0) << i << " " << j << " " << k;
 }
 
 TEST(ComputeFields, PointFarOutsideIsFree) {

@@ -66,6 +66,11 @@ struct GridGeometry {
            static_cast<std::size_t>(num_points[0]) *
                (static_cast<std::size_t>(j) + static_cast<std::size_t>(num_points[1]) * static_cast<std::size_t>(k));
   }
+  //! Largest index i in [0, n) with coordinate(dim, i) <= x, or -1 if none
+  //! (exact with respect to coordinate()).
+  int index_at_or_below(int dim, double x) const;
+  //! Smallest index i in [0, n) with coordinate(dim, i) >= x, or n if none.
+  int index_at_or_above(int dim, double x) const;
   //! Total number of points.
   std::size_t num_total_points() const {
     return static_cast<std::size_t>(num_points[0]) * static_cast<std::size_t>(num_points[1]) *
