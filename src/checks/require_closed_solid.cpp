@@ -55,11 +55,13 @@ void require_closed_solid(Mesh& mesh, Progress* progress) {
   }
   const CheckResult outward = check_outward_orientation(mesh, options);
   if (outward.failed()) {
-    if (outward.num_offending == 0) throw InvalidMeshError(outward.message);
+    // Only a mesh that is inward as a whole is repaired (flipping every face).
+    if (outward.num_offending != mesh.num_faces()) throw InvalidMeshError(outward.message);
     for (auto& face : mesh.faces) std::swap(face[1], face[2]);
     if (progress)
       progress->warn("the mesh was oriented inward (negative volume): flipped all " +
                      std::to_string(mesh.num_faces()) + " faces to point outward");
+    throw_if_failed({check_outward_orientation(mesh, options)});
   }
   const CheckResult components = check_components(mesh, options);
   if (progress && components.num_groups > 1) progress->info(components.message);

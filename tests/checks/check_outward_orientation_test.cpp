@@ -29,6 +29,17 @@ TEST(CheckOutwardOrientation, CavityInsideASolidIsFine) {
   EXPECT_TRUE(check_outward_orientation(m).passed());
 }
 
+TEST(CheckOutwardOrientation, SeparateInsideOutPartIsFound) {
+  // A big outward cube and, beside it, a small inward one: positive in total.
+  const Mesh m = test::append(test::cube(Vec3::Zero(), 3.0),
+                              test::flipped(test::cube(Vec3(5, 0, 0), 1.0)));
+  const CheckResult r = check_outward_orientation(m);
+  EXPECT_TRUE(r.failed());
+  EXPECT_EQ(r.num_offending, 12u);
+  EXPECT_EQ(r.examples, (std::vector<int>{12}));
+  EXPECT_NE(r.message.find("1 component is oriented inward"), std::string::npos) << r.message;
+}
+
 TEST(CheckOutwardOrientation, ZeroVolumeIsDecidedExactly) {
   // A cube and the same cube inward, far from the origin: the volumes cancel exactly.
   const Vec3 far(1e8 + 0.1, -3e7, 12345.678);

@@ -49,6 +49,22 @@ TEST(RequireClosedSolid, FlipsInwardMeshWithAWarning) {
   EXPECT_NE(progress.warnings[0].find("inward"), std::string::npos);
 }
 
+TEST(RequireClosedSolid, RefusesAnInsideOutPartBesideTheSolid) {
+  // Inward as a whole (big inward cube): flipped, and then the small cube
+  // beside it is inside out: refused.
+  const Mesh m = test::append(test::flipped(test::cube(Vec3::Zero(), 3.0)),
+                              test::cube(Vec3(5, 0, 0), 1.0));
+  EXPECT_NE(refusal(m).find("1 component is oriented inward"), std::string::npos) << refusal(m);
+}
+
+TEST(RequireClosedSolid, AcceptsACavity) {
+  Mesh m = test::append(test::cube(Vec3::Zero(), 3.0),
+                        test::flipped(test::cube(Vec3(1, 1, 1), 1.0)));
+  RecordingProgress progress;
+  EXPECT_NO_THROW(require_closed_solid(m, &progress));
+  EXPECT_TRUE(progress.warnings.empty());
+}
+
 TEST(RequireClosedSolid, ReportsSeveralComponents) {
   Mesh m = test::append(test::cube(), test::cube(Vec3(5, 0, 0)));
   RecordingProgress progress;

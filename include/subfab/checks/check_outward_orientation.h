@@ -12,8 +12,11 @@ namespace subfab {
 //! of the solid; the sign is decided exactly (floating-point sum with an
 //! error bound, exact rational sum when that bound is not conclusive).
 //! Only meaningful for a closed, consistently oriented mesh.
-//! Failed when the volume is negative (num_offending = #F, no examples)
-//! or zero.
+//! Failed when the total volume is negative (num_offending = #F, no
+//! examples: flipping every face fixes it), zero (num_offending = 0), or when
+//! a connected component has negative volume and its bounding box is not
+//! inside that of a positive component, so it cannot be a cavity
+//! (num_offending = faces of such components; examples = their first faces).
 //! \throw InvalidMeshError when an index is out of range or a coordinate is
 //!        not finite (run those checks first).
 CheckResult check_outward_orientation(const Mesh& mesh, const CheckOptions& options = {});
