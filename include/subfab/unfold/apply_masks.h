@@ -1,0 +1,67 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file apply_masks.h
+//! Stage 4 of the unfoldable simplification (thesis Section 3.3.1
+//! "Geometry" and Appendix A): sign flips on the lattice, guided by the mask
+//! catalogue, that remove or move small marching-cubes configurations so the
+//! surface has fewer, larger planar facets.
+//!
+//! Outline:
+//!   queue <- every lattice point next to the surface, in index order
+//!   while queue not empty and the flip cap is not reached:
+//!     a <- pop front
+//!     for every oriented mask matching the signs around a:
+//!       for every POI set S of the mask (points not frozen, off the border):
+//!         flip S tentatively, one point at a time; reject S if a flip is
+//!         not topology-preserving (simple point, (6,18) adjacency);
+//!         dE <- change of E over the cubes around S (E = number of
+//!         triangle edges whose two triangles have different normals)
+//!       eligible: dE < 0, or dE = 0 for a mask with several POI sets when
+//!         the move grows the bigger adjacent chart
+//!       among eligible sets take the one whose adjacent charts are biggest
+//!         (area, flood fill inside the charts), then smallest dE
+//!       flip it; push every point within 2 of it to the queue
+//! The marching-cubes triangles of a cube are a function of its 8 signs, so
+//! a flip changes only the 8 cubes around each flipped point: E, the charts
+//! around them and the validity checks are all evaluated on those cubes and
+//! their neighbours. Termination: every point may flip at most
+//! max_flips_per_point times (a point flipped back and forth is a loop: it is
+//! frozen and counted), and the total is capped.
+#pragma once
+
+#include <cstddef>
+
+#include "subfab/core/progress.h"
+#include "subfab/unfold/build_lattice.h"
+#include "subfab/unfold/extract_charts.h"
+#include "subfab/unfold/marching_cubes.h"
+
+namespace subfab {
+
+//! Options of apply_masks().
+struct MaskOptions {
+  int max_flips_per_point = 2;      // a point may change sign at most this often (loop guard)
+  std::size_t max_total_flips = 0;  // global cap on flips; 0 = 4 x the number of surface points
+  int chart_probe_triangles = 128;  // flood-fill cap (triangles) when measuring a chart's area
+  Progress* progress = nullptr;     // optional progress receiver
+};
+
+//! Result of apply_masks().
+struct MaskResult {
+  Lattice lattice;                      // the lattice after the flips
+  McSurface surface;                    // its marching-cubes surface
+  Charts charts;                        // its facets ("facets_after_masks" = charts.poly.num_facets())
+  std::size_t num_flips = 0;            // point flips applied
+  std::size_t num_moves = 0;            // POI sets applied
+  std::size_t num_rejected_topology = 0;  // POI sets refused: a flip would change the topology
+  std::size_t num_frozen_points = 0;    // points that reached max_flips_per_point (loops cut)
+  bool hit_flip_cap = false;            // stopped by max_total_flips
+};
+
+//! Applies the masks of Appendix A to `lattice` until no mask improves the
+//! surface (see the file comment). The surface stays closed, 2-manifold and
+//! of the same topology (only simple points are flipped; the lattice border
+//! never changes). Deterministic (one fixed processing order).
+//! \param lattice a lattice from build_lattice() (outer layer outside).
+MaskResult apply_masks(const Lattice& lattice, const MaskOptions& options = {});
+
+}  // namespace subfab
