@@ -61,6 +61,13 @@ std::vector<std::uint16_t> mark_triangle_cells(const Mesh& mesh, const GridGeome
                                           Point3(c.x(), c.y(), c.z()));
         // A zero-area triangle is tested as the segment or point it spans.
         const bool degenerate = signs[f][0] == 0 && signs[f][1] == 0 && signs[f][2] == 0;
+        // A vertex in the closed cell (exact comparisons) decides without the full test.
+        const auto has_vertex_in_cell = [&](int i, int j, int k) {
+          const Vec3 cell_lo = grid.point(i, j, k), cell_hi = grid.point(i + 1, j + 1, k + 1);
+          for (const Vec3* p : {&a, &b, &c})
+            if ((p->array() >= cell_lo.array()).all() && (p->array() <= cell_hi.array()).all()) return true;
+          return false;
+        };
         for (int k = range[2][0]; k <= range[2][1]; ++k)
           for (int j = range[1][0]; j <= range[1][1]; ++j)
             for (int i = range[0][0]; i <= range[0][1]; ++i) {
@@ -68,7 +75,7 @@ std::vector<std::uint16_t> mark_triangle_cells(const Mesh& mesh, const GridGeome
               if (!single && degenerate) {
                 const Box3 cell{grid.point(i, j, k), grid.point(i + 1, j + 1, k + 1)};
                 if (!triangle_meets_closed_box(a, b, c, cell)) continue;
-              } else if (!single) {
+              } else if (!single && !has_vertex_in_cell(i, j, k)) {
                 const Kernel::Iso_cuboid_3 cell(Point3(grid.coordinate(0, i), grid.coordinate(1, j), grid.coordinate(2, k)),
                                                 Point3(grid.coordinate(0, i + 1), grid.coordinate(1, j + 1),
                                                        grid.coordinate(2, k + 1)));
