@@ -45,9 +45,12 @@ struct BoxOrderCallbacks {
   //! block becomes solid ∩ (second \ first)) leaves an invalid block.
   //! Called only for boxes whose interiors overlap.
   std::function<bool(const HeightBox& first, const HeightBox& second)> conflict;
-  //! A piece made by a split may be dropped without losing any part of the
-  //! surface (its block is empty or touches no surface). Null = keep all.
-  std::function<bool(const HeightBox& piece)> droppable;
+  //! A piece of `parent` made by a split may be dropped without losing any
+  //! part of the surface (given the live boxes other than `parent`). Called
+  //! serially. Null = keep all.
+  std::function<bool(const HeightBox& piece, const HeightBox& parent)> droppable;
+  //! Told (serially) that `parent` was replaced by `kept`. May be null.
+  std::function<void(const HeightBox& parent, const std::vector<HeightBox>& kept)> replaced;
   //! Deterministic size of the block of a box (>= 0; smaller blocks are
   //! carved first, splits keep the smallest piece large).
   std::function<double(const HeightBox& box)> size;

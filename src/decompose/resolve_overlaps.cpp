@@ -3,8 +3,12 @@
 // solid, the graph work is in order_boxes.cpp.
 #include "subfab/decompose/resolve_overlaps.h"
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
+#include <map>
+#include <tuple>
 #include <string>
 
 #include "decompose/order_boxes.h"
@@ -44,7 +48,13 @@ namespace {
 //! min + (e, e^2, e^3), which lies in it, tells which.
 bool solid_meets_open_box(const SolidIndex& index, const Box3& box) {
   if (!(box.min.array() < box.max.array()).all()) return false;
-  if (!index.faces_meeting_open_box(box).empty()) return true;
+  // Any triangle in the open box? Every triangle with a non-zero normal faces
+  // away from at least one of the six axes, so this is the negation of box
+  // validity for some axis (early-exit queries, unlike collecting all faces).
+  // Zero-area triangles are in no list; in a closed mesh their points lie on
+  // edges of non-degenerate triangles (refused as input anyway).
+  for (Axis axis : kAllAxes)
+    if (!index.box_is_valid(box, axis)) return true;
   return index.is_inside(box.min);
 }
 }  // namespace
@@ -57,20 +67,20 @@ bool carving_conflict(const SolidIndex& index, const HeightBox& first, const Hei
   return false;
 }
 
-bool split_piece_droppable(const SolidIndex& index, const HeightBox& piece) {
+bool split_piece_droppable(const SolidIndex& index, const HeightBox& piece,
+                           const std::function<bool(int face)>& covered_elsewhere) {
   const Box3& box = piece.box;
-  if (!index.faces_meeting_open_box(box).empty()) return false;
-  if (!index.is_inside(box.min)) return true;  // the block is empty
-  // An interior chunk: droppable iff no triangle touches the closed box.
-  // Candidates: faces meeting a slightly larger open box (which contains the
-  // closed box), then the exact closed test.
-  Box3 grown = box;
-  for (int k = 0; k < 3; ++k) {
-    grown.min[k] = std::nextafter(box.min[k], -std::numeric_limits<double>::infinity());
-    grown.max[k] = std::nextafter(box.max[k], std::numeric_limits<double>::infinity());
-  }
+  if (!solid_meets_open_box(index, box)) return true;  // no volume: its block covers nothing
+  // Otherwise every triangle touching the closed piece must be covered by
+  // another live box (none touching: an interior chunk off the surface).
+  // Candidates by closed bounding-box overlap (a linear scan of comparisons,
+  // cheaper here than exact open-box tests on faces lying in the piece's
+  // planes), then the cover counts, then the exact closed test.
   const Mesh& mesh = index.mesh();
-  for (int f : index.faces_meeting_open_box(grown)) {
+  for (int f = 0; f < index.num_faces(); ++f) {
+    const Box3& fb = index.face_box(f);
+    if ((fb.min.array() > box.max.array()).any() || (fb.max.array() < box.min.array()).any()) continue;
+    if (covered_elsewhere(f)) continue;
     const Triangle& t = mesh.faces[static_cast<std::size_t>(f)];
     if (triangle_meets_closed_box(mesh.vertices[static_cast<std::size_t>(t[0])],
                                   mesh.vertices[static_cast<std::size_t>(t[1])],
@@ -97,7 +107,33 @@ ResolveResult resolve_overlaps(const SolidIndex& index, std::vector<HeightBox> b
   const BoundingBox bbox = bounding_box(index.mesh());
   BoxOrderCallbacks callbacks;
   callbacks.conflict = [&](const HeightBox& a, const HeightBox& b) { return carving_conflict(index, a, b); };
-  callbacks.droppable = [&](const HeightBox& piece) { return split_piece_droppable(index, piece); };
+  // Per face, the number of live boxes covering it (SolidIndex::faces_covered).
+  std::vector<int> cover_count(static_cast<std::size_t>(index.num_faces()), 0);
+  {
+    std::vector<std::vector<int>> covered(boxes.size());
+    parallel_for(0, boxes.size(), [&](std::size_t i) { covered[i] = index.faces_covered(boxes[i]); });
+    for (const auto& list : covered)
+      for (int f : list) ++cover_count[static_cast<std::size_t>(f)];
+  }
+  // Faces covered by the box being split (asked for many candidate pieces).
+  std::map<std::tuple<double, double, double, double, double, double, int>, std::vector<int>> covered_by_parent;
+  callbacks.droppable = [&](const HeightBox& piece, const HeightBox& parent) {
+    const Box3& pb = parent.box;
+    const auto key = std::make_tuple(pb.min.x(), pb.min.y(), pb.min.z(), pb.max.x(), pb.max.y(), pb.max.z(),
+                                     axis_index(parent.axis));
+    auto it = covered_by_parent.find(key);
+    if (it == covered_by_parent.end()) it = covered_by_parent.emplace(key, index.faces_covered(parent)).first;
+    const std::vector<int>& by_parent = it->second;
+    return split_piece_droppable(index, piece, [&](int f) {
+      const bool parent_covers = std::binary_search(by_parent.begin(), by_parent.end(), f);
+      return cover_count[static_cast<std::size_t>(f)] - (parent_covers ? 1 : 0) >= 1;
+    });
+  };
+  callbacks.replaced = [&](const HeightBox& parent, const std::vector<HeightBox>& kept) {
+    for (int f : index.faces_covered(parent)) --cover_count[static_cast<std::size_t>(f)];
+    for (const HeightBox& piece : kept)
+      for (int f : index.faces_covered(piece)) ++cover_count[static_cast<std::size_t>(f)];
+  };
   callbacks.size = [&](const HeightBox& b) {
     Box3 clipped{b.box.min.cwiseMax(bbox.min), b.box.max.cwiseMin(bbox.max)};
     return clipped.volume();

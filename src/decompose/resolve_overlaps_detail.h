@@ -4,6 +4,8 @@
 //! and an entry point that reuses a SolidIndex (the pipeline builds one).
 #pragma once
 
+#include <functional>
+
 #include "decompose/solid_index.h"
 #include "subfab/decompose/resolve_overlaps.h"
 
@@ -18,10 +20,13 @@ namespace subfab::detail {
 bool carving_conflict(const SolidIndex& index, const HeightBox& first, const HeightBox& second);
 
 //! Exact: may a piece of a split be left out without losing surface? True
-//! when no triangle meets its open interior and either it lies outside the
-//! solid (its block is empty) or no triangle touches the closed piece (its
-//! block is an interior chunk that touches no surface).
-bool split_piece_droppable(const SolidIndex& index, const HeightBox& piece);
+//! when its block has no volume (the solid's interior misses the open piece),
+//! when no triangle touches the closed piece (empty or an interior chunk), or
+//! when every triangle touching the closed piece is covered (faces_covered)
+//! by another live box, according to `covered_elsewhere`: then every surface
+//! point of the piece has the solid next to it inside that other box.
+bool split_piece_droppable(const SolidIndex& index, const HeightBox& piece,
+                           const std::function<bool(int face)>& covered_elsewhere);
 
 //! resolve_overlaps() on a prebuilt index (same contract).
 ResolveResult resolve_overlaps(const SolidIndex& index, std::vector<HeightBox> boxes, const ResolveOptions& options);

@@ -195,11 +195,17 @@ TEST(OrderBoxes, SmallestRootsFirst) {
 TEST(OrderBoxes, DroppablePiecesAreLeftOut) {
   const std::vector<HeightBox> boxes = plus_pair();
   auto cb = full_space_callbacks();
-  cb.droppable = [](const HeightBox&) { return true; };  // every piece
+  cb.droppable = [](const HeightBox&, const HeightBox&) { return true; };  // every piece
+  int num_replaced = 0;
+  cb.replaced = [&](const HeightBox&, const std::vector<HeightBox>& kept) {
+    ++num_replaced;
+    EXPECT_TRUE(kept.empty());
+  };
   const BoxOrderResult r = order_boxes(boxes, cb, {});
   EXPECT_EQ(r.num_splits, 1);
   EXPECT_GE(r.num_dropped_pieces, 1);
   EXPECT_EQ(r.ordered.size(), 1u);  // the split box vanished entirely
+  EXPECT_EQ(num_replaced, 1);
 }
 
 TEST(OrderBoxes, RandomBoxesGiveAValidDeterministicOrder) {

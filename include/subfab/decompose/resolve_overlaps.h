@@ -15,14 +15,16 @@
 //!   2. per strongly connected component, a shortest cycle is broken by
 //!      splitting the head b2 of one of its edges b1 -> b2 into sub-boxes of
 //!      B2 \ B1 (sub-boxes of a valid box are valid), choosing the edge whose
-//!      smallest kept piece is largest; pieces whose block is empty or does
-//!      not touch the surface are dropped; repeated until acyclic;
+//!      smallest kept piece is largest; a piece is dropped when its block is
+//!      empty, touches no surface, or every triangle it touches is covered
+//!      by another live box; repeated until acyclic;
 //!   3. order: Kahn's algorithm on the reversed graph, smallest block first.
 //!
-//! Surface coverage is kept: the union of the boxes only loses the dropped
-//! pieces, whose blocks have no volume (no triangle inside and outside the
-//! solid) or touch no surface (inside the solid, no triangle in the closed
-//! piece), so every surface point that had solid of some box next to it
+//! Surface coverage is kept: a split keeps the union of the boxes (B1 stays,
+//! the pieces fill B2 \ B1), and a dropped piece either holds no solid, or
+//! touches no surface, or every triangle it touches lies in another live box
+//! with the solid on that box's side (cover counts are kept up to date over
+//! splits), so every surface point that had solid of some box next to it
 //! still has. The carve stage works on volumes, so this is what it needs.
 //! Pairwise validity suffices for the sequence: the new faces of block_k are
 //! parts of faces of earlier boxes, each a subset of the pairwise case.
