@@ -290,17 +290,19 @@ std::string check_facet_simple(const ExactPolyMesh& mesh, int f) {
       if (dot(n, mesh.points[v]) != facet.offset) return name + " is not planar";
       all.push_back(v);
     }
-  {
-    auto sorted = all;
-    std::sort(sorted.begin(), sorted.end());
-    if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) return name + " repeats a vertex";
-  }
   for (std::size_t l = 0; l < facet.loops.size(); ++l) {
     const Q area = loop_area2(mesh, facet, facet.loops[l]);
     if (l == 0 && !(area > 0)) return name + " has a non-positive outer loop";
     if (l > 0 && !(area < 0)) return name + " has a hole loop with the wrong orientation";
-    if (l > 0 && locate_in_loops(mesh, {facet.loops[0]}, k, mesh.points[facet.loops[l][0]]) != Where::Inside)
-      return name + " has a hole outside its outer loop";
+    if (l > 0) {
+      // a hole may touch the outer loop at a vertex (a pinch): test a vertex that does not
+      for (int v : facet.loops[l]) {
+        const Where w = locate_in_loops(mesh, {facet.loops[0]}, k, mesh.points[v]);
+        if (w == Where::Boundary) continue;
+        if (w == Where::Outside) return name + " has a hole outside its outer loop";
+        break;
+      }
+    }
   }
   struct Seg {
     int a, b;
@@ -319,15 +321,13 @@ std::string check_facet_simple(const ExactPolyMesh& mesh, int f) {
       if (!((s.lo.array() <= t.hi.array() + eps).all() && (t.lo.array() <= s.hi.array() + eps).all())) continue;
       const P2 a = project(mesh.points[s.a], k), b = project(mesh.points[s.b], k);
       const P2 c = project(mesh.points[t.a], k), d = project(mesh.points[t.b], k);
-      if (s.b == t.a || s.a == t.b) {
-        // consecutive: only the shared vertex may be common (no fold-back)
-        const P2& shared = (s.b == t.a) ? b : a;
-        const P2& other_s = (s.b == t.a) ? a : b;
-        const P2& other_t = (s.b == t.a) ? d : c;
-        if (orient(other_s, shared, other_t) == 0) {
-          const Q du = (other_s.u - shared.u) * (other_t.u - shared.u) + (other_s.v - shared.v) * (other_t.v - shared.v);
-          if (du > 0) return name + " folds back on itself";
-        }
+      if ((s.a == t.a && s.b == t.b) || (s.a == t.b && s.b == t.a)) return name + " uses an edge twice";
+      if (s.a == t.a || s.a == t.b || s.b == t.a || s.b == t.b) {
+        // sharing a vertex (consecutive edges, or a pinch): they may meet only there
+        const P2& s_other = (s.a == t.a || s.a == t.b) ? b : a;
+        const P2& t_other = (t.a == s.a || t.a == s.b) ? d : c;
+        if ((orient(a, b, t_other) == 0 && between(a, b, t_other)) || (orient(c, d, s_other) == 0 && between(c, d, s_other)))
+          return name + " folds back on itself";
         continue;
       }
       if (segments_meet(a, b, c, d)) return name + " has crossing or touching edges";
