@@ -231,10 +231,10 @@ double orientation_energy(const Mesh& mesh, const Eigen::Matrix3d& rotation) {
 
 OrientResult orient_mesh(const Mesh& mesh, const OrientOptions& options) {
   if (options.num_directions < 1 || options.num_twists < 1 || options.num_refined < 0 || !(options.tolerance > 0) ||
-      !(options.keep_frame_area >= 0) || !(options.keep_frame_tolerance >= 0))
+      !(options.keep_frame_area >= 0) || !(options.keep_frame_tolerance >= 0) || !(options.min_relative_gain >= 0))
     throw InvalidArgumentError(
         "orientation options: num_directions and num_twists must be >= 1, num_refined >= 0, tolerance > 0, "
-        "keep_frame_area and keep_frame_tolerance >= 0");
+        "keep_frame_area, keep_frame_tolerance and min_relative_gain >= 0");
   if (mesh.empty()) throw InvalidMeshError("cannot orient a mesh with no faces");
   const Matrix3Xd w = weighted_normals(mesh);
   const double area = w.colwise().norm().sum();
@@ -322,7 +322,8 @@ OrientResult orient_mesh(const Mesh& mesh, const OrientOptions& options) {
   }
   const bool axis_aligned_input = aligned_area >= options.keep_frame_area * area &&
                                   energy_identity <= best_energy * (1 + options.keep_frame_tolerance);
-  if (energy_identity <= best_energy * (1 + 1e-9) || axis_aligned_input) {
+  const bool negligible_gain = energy_identity <= best_energy * (1 + std::max(1e-9, options.min_relative_gain));
+  if (negligible_gain || axis_aligned_input) {
     result.rotation = Eigen::Matrix3d::Identity();
     result.energy_after = result.energy_before;
   } else {
