@@ -30,6 +30,10 @@ class MaskEngine {
       corner_offset_[static_cast<std::size_t>(c)] =
           ((c & 1) ? stride_[0] : 0) + (((c >> 1) & 1) ? stride_[1] : 0) + (((c >> 2) & 1) ? stride_[2] : 0);
     flips_.assign(g_.num_points(), 0);
+    // Fidelity band: only points next to the original surface may flip, so
+    // the surface never drifts more than about one cell from where it was.
+    band_.assign(g_.num_points(), 0);
+    for (std::size_t p = 0; p < g_.num_points(); ++p) band_[p] = on_surface(p);
   }
 
   MaskResult run() {
@@ -49,10 +53,15 @@ class MaskEngine {
       queue.pop_front();
       queued[a] = 0;
       const Int3 ac = coords(a);
-      for (const masks::Mask& m : masks) {
-        if (!matches(m, ac)) continue;
+      for (std::size_t mi = 0; mi <= masks.size(); ++mi) {
         std::vector<std::size_t> best;
-        if (!choose(m, ac, best, result)) continue;
+        if (mi < masks.size()) {
+          if (!matches(masks[mi], ac) || !choose(masks[mi], ac, best, result)) continue;
+        } else {
+          // After the catalogue: the anchor alone, if flipping it is simple
+          // and strictly lowers the local energy (generic single-point move).
+          if (!opt_.single_point_moves || !single_point_move(ac, best)) continue;
+        }
         if (result.num_flips + best.size() > cap) {
           result.hit_flip_cap = true;
           queue.clear();
@@ -308,6 +317,20 @@ class MaskEngine {
     return best;
   }
 
+  bool single_point_move(const Int3& c, std::vector<std::size_t>& chosen) {
+    if (!interior(c)) return false;
+    const std::size_t p = index(c);
+    if (!band_[p] || flips_[p] >= opt_.max_flips_per_point || !is_simple(c)) return false;
+    const std::vector<std::size_t> cubes = cubes_around({p});
+    const long before = local_energy(cubes);
+    l_.inside[p] ^= 1;
+    const long after = local_energy(cubes);
+    l_.inside[p] ^= 1;
+    if (after >= before) return false;
+    chosen = {p};
+    return true;
+  }
+
   // Evaluates the POI sets of a matching mask; true (and the points) if one is applied.
   bool choose(const masks::Mask& m, const Int3& anchor, std::vector<std::size_t>& chosen, MaskResult& result) {
     struct Option {
@@ -321,7 +344,7 @@ class MaskEngine {
       bool ok = true;
       for (const auto& o : set) {
         const Int3 q{anchor[0] + o[0], anchor[1] + o[1], anchor[2] + o[2]};
-        if (!interior(q) || flips_[index(q)] >= opt_.max_flips_per_point) ok = false;
+        if (!interior(q) || !band_[index(q)] || flips_[index(q)] >= opt_.max_flips_per_point) ok = false;
         else points.push_back(index(q));
       }
       if (!ok) continue;
@@ -366,6 +389,7 @@ class MaskEngine {
   std::array<std::size_t, 3> stride_{};
   std::array<std::size_t, 8> corner_offset_{};
   std::vector<int> flips_;
+  std::vector<char> band_;
 };
 
 }  // namespace

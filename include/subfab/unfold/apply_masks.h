@@ -10,7 +10,8 @@
 //!   while queue not empty and the flip cap is not reached:
 //!     a <- pop front
 //!     for every oriented mask matching the signs around a:
-//!       for every POI set S of the mask (points not frozen, off the border):
+//!       for every POI set S of the mask (points not frozen, off the border,
+//!       and next to the ORIGINAL surface: the fidelity band):
 //!         flip S tentatively, one point at a time; reject S if a flip is
 //!         not topology-preserving (simple point, (6,18) adjacency);
 //!         dE <- change of E over the cubes around S (E = number of
@@ -20,6 +21,8 @@
 //!       among eligible sets take the one whose adjacent charts are biggest
 //!         (area, flood fill inside the charts), then smallest dE
 //!       flip it; push every point within 2 of it to the queue
+//!     if no mask applies: flip `a` alone if that is simple and lowers E
+//!       (single_point_moves; our addition, not in the thesis)
 //! The marching-cubes triangles of a cube are a function of its 8 signs, so
 //! a flip changes only the 8 cubes around each flipped point: E, the charts
 //! around them and the validity checks are all evaluated on those cubes and
@@ -42,6 +45,8 @@ struct MaskOptions {
   int max_flips_per_point = 2;      // a point may change sign at most this often (loop guard)
   std::size_t max_total_flips = 0;  // global cap on flips; 0 = 4 x the number of surface points
   int chart_probe_triangles = 128;  // flood-fill cap (triangles) when measuring a chart's area
+  bool single_point_moves = true;   // after the catalogue, also flip a lone surface point when
+                                    // that strictly lowers the local energy (not in the thesis)
   Progress* progress = nullptr;     // optional progress receiver
 };
 
