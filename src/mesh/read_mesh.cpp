@@ -53,7 +53,7 @@ void throw_invalid(const std::string& name, Location where, const std::string& w
 bool parse_double(const char*& p, const char* end, double& value) {
   const char* q = p;
   if (q < end && *q == '+') ++q;  // from_chars does not take a leading '+'
-  if (q < end && *q == '+') return false;
+  if (q < end && (*q == '+' || (*q == '-' && q != p))) return false;  // "++1", "+-1"
   double v = 0;
   const auto [ptr, ec] = std::from_chars(q, end, v, std::chars_format::general);
   if (ec == std::errc::invalid_argument || ptr == q) return false;

@@ -237,6 +237,7 @@ std::vector<BadFile> bad_files() {
        false, "has 2 corners"},
       {"two coordinates obj", "short.obj", "v 0 0\n", true, "short.obj:1: expected 3 coordinates after 'v'"},
       {"not a number obj", "word.obj", "v 0 zero 0\n", true, "expected a number after 'v', got 'zero'"},
+      {"double sign obj", "sign.obj", "v +-1 0 0\n", true, "expected a number after 'v', got '+-1'"},
       {"bad corner obj", "corner.obj", kTri + "f 1 2 x3\n", true, "expected a vertex index"},
       {"truncated header off", "header.off", "OFF\n3", true, "header"},
       {"bad keyword off", "keyword.off", "MESH\n3 1 0\n", true, "expected an OFF header"},
