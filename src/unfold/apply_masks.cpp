@@ -252,6 +252,52 @@ class MaskEngine {
     return energy;
   }
 
+  // Number of lattice faces on which two neighbouring cubes use the two
+  // crossing "parallel" face diagonals (rule 4 of mc_case_table.h): the
+  // surface would touch itself at the face centre. Counted over the faces of
+  // `cubes`; flips must not increase it.
+  std::size_t count_touchings(const std::vector<std::size_t>& cubes) const {
+    // (global face key, diagonal axis) for every parallel face diagonal.
+    std::vector<std::pair<std::size_t, std::size_t>> chords;
+    std::vector<std::size_t> ring = cubes;
+    for (std::size_t cube : cubes) {
+      const Int3 c = coords(cube);
+      for (int a = 0; a < 3; ++a)
+        for (int s : {-1, 1}) {
+          Int3 q = c;
+          q[static_cast<std::size_t>(a)] += s;
+          if (valid_cube(q)) ring.push_back(index(q));
+        }
+    }
+    std::sort(ring.begin(), ring.end());
+    ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+    for (std::size_t cube : ring) {
+      const mc::CubeCase& cc = mc::case_table()[static_cast<std::size_t>(cube_config(cube))];
+      for (const auto& t : cc.triangles)
+        for (int s = 0; s < 3; ++s) {
+          const int e0 = t[static_cast<std::size_t>(s)], e1 = t[static_cast<std::size_t>((s + 1) % 3)];
+          if (e0 > e1) continue;  // each diagonal once (interior diagonals appear in both directions)
+          const mc::CubeEdge& a = mc::cube_edges()[static_cast<std::size_t>(e0)];
+          const mc::CubeEdge& b = mc::cube_edges()[static_cast<std::size_t>(e1)];
+          if (a.axis != b.axis) continue;  // parallel chords join two edges of the same axis
+          // The face both edges lie on: the axis (other than theirs) along
+          // which their corners agree.
+          for (int f = 0; f < 3; ++f) {
+            if (f == a.axis) continue;
+            const int sa = (a.corners[0] >> f) & 1, sb = (b.corners[0] >> f) & 1;
+            if (sa != sb) continue;
+            const std::size_t face_point = cube + (sa ? stride_[static_cast<std::size_t>(f)] : 0);
+            chords.push_back({3 * face_point + static_cast<std::size_t>(f), static_cast<std::size_t>(a.axis)});
+          }
+        }
+    }
+    std::sort(chords.begin(), chords.end());
+    chords.erase(std::unique(chords.begin(), chords.end()), chords.end());
+    std::size_t touchings = 0;
+    for (std::size_t i = 0; i + 1 < chords.size(); ++i) touchings += chords[i].first == chords[i + 1].first;
+    return touchings;
+  }
+
   // Doubled position of a global vertex (lattice edge id).
   Vec3 vertex_position2(std::size_t edge) const {
     const Int3 c = coords(edge / 3);
@@ -323,10 +369,12 @@ class MaskEngine {
     if (!band_[p] || flips_[p] >= opt_.max_flips_per_point || !is_simple(c)) return false;
     const std::vector<std::size_t> cubes = cubes_around({p});
     const long before = local_energy(cubes);
+    const std::size_t touch_before = count_touchings(cubes);
     l_.inside[p] ^= 1;
     const long after = local_energy(cubes);
+    const bool touches = count_touchings(cubes) > touch_before;
     l_.inside[p] ^= 1;
-    if (after >= before) return false;
+    if (after >= before || touches) return false;
     chosen = {p};
     return true;
   }
@@ -350,13 +398,16 @@ class MaskEngine {
       if (!ok) continue;
       const std::vector<std::size_t> cubes = cubes_around(points);
       const long before = local_energy(cubes);
+      const std::size_t touch_before = count_touchings(cubes);
       // Flip one point at a time, each must be simple when flipped.
       std::size_t done = 0;
       for (; done < points.size(); ++done) {
         if (!is_simple(coords(points[done]))) break;
         l_.inside[points[done]] ^= 1;
       }
-      if (done == points.size()) {
+      if (done == points.size() && count_touchings(cubes) > touch_before) {
+        ++result.num_rejected_topology;
+      } else if (done == points.size()) {
         const long after = local_energy(cubes);
         const double chart = m.poi_sets.size() > 1 ? largest_adjacent_chart(cubes) : 0;
         options.push_back({points, after - before, chart});

@@ -11,6 +11,7 @@
 #include "subfab/checks/check_boundary_edges.h"
 #include "subfab/checks/check_consistent_orientation.h"
 #include "subfab/checks/check_non_manifold_edges.h"
+#include "subfab/checks/check_self_intersections.h"
 #include "subfab/core/parallel.h"
 #include "subfab/mesh/read_mesh.h"
 #include "subfab/unfold/lattice_directions.h"
@@ -130,7 +131,7 @@ TEST(ApplyMasks, LeavesABoxAlone) {
 // global cap is honoured.
 TEST(ApplyMasks, TerminatesAndKeepsTopologyOnRandomLattices) {
   std::mt19937 rng(7);
-  for (int trial = 0; trial < 6; ++trial) {
+  for (int trial = 0; trial < 10; ++trial) {
     const int n = 12;
     std::bernoulli_distribution coin(0.35 + 0.05 * trial);
     Lattice l;
@@ -143,6 +144,10 @@ TEST(ApplyMasks, TerminatesAndKeepsTopologyOnRandomLattices) {
     const MaskResult r = apply_masks(l, {});
     expect_valid(r, "random " + std::to_string(trial));
     EXPECT_EQ(euler(r.surface.mesh), euler(before.mesh)) << trial;
+    // No new self-contact (crossing face diagonals of neighbouring cubes).
+    if (check_self_intersections(before.mesh).passed()) {
+      EXPECT_TRUE(check_self_intersections(r.surface.mesh).passed()) << trial;
+    }
     const MaskResult capped = apply_masks(l, {.max_total_flips = 3});
     EXPECT_LE(capped.num_flips, 3u);
     if (r.num_flips > 3) {

@@ -13,7 +13,9 @@
 //!       for every POI set S of the mask (points not frozen, off the border,
 //!       and next to the ORIGINAL surface: the fidelity band):
 //!         flip S tentatively, one point at a time; reject S if a flip is
-//!         not topology-preserving (simple point, (6,18) adjacency);
+//!         not topology-preserving (simple point, (6,18) adjacency) or makes
+//!         two cubes use the crossing diagonals of their shared face (the
+//!         surface would touch itself there);
 //!         dE <- change of E over the cubes around S (E = number of
 //!         triangle edges whose two triangles have different normals)
 //!       eligible: dE < 0, or dE = 0 for a mask with several POI sets when
@@ -57,7 +59,7 @@ struct MaskResult {
   Charts charts;                        // its facets ("facets_after_masks" = charts.poly.num_facets())
   std::size_t num_flips = 0;            // point flips applied
   std::size_t num_moves = 0;            // POI sets applied
-  std::size_t num_rejected_topology = 0;  // POI sets refused: a flip would change the topology
+  std::size_t num_rejected_topology = 0;  // POI sets refused: topology change or self-contact
   std::size_t num_frozen_points = 0;    // points that reached max_flips_per_point (loops cut)
   bool hit_flip_cap = false;            // stopped by max_total_flips
 };
