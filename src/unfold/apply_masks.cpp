@@ -210,16 +210,8 @@ class MaskEngine {
     return out;
   }
 
-  struct HalfEdge {
-    std::size_t from, to;
-    int normal;
-    bool in_region;
-    bool operator<(const HalfEdge& o) const { return std::tie(from, to) < std::tie(o.from, o.to); }
-  };
-
-  // E over the triangles of `cubes`: triangle edges whose neighbour (in the
-  // cube or a face-adjacent one) has a different normal.
-  long local_energy(const std::vector<std::size_t>& cubes) const {
+  // `cubes` and the cubes sharing a face with one of them, sorted.
+  std::vector<std::size_t> with_face_neighbours(const std::vector<std::size_t>& cubes) const {
     std::vector<std::size_t> ring = cubes;
     for (std::size_t cube : cubes) {
       const Int3 c = coords(cube);
@@ -232,6 +224,20 @@ class MaskEngine {
     }
     std::sort(ring.begin(), ring.end());
     ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+    return ring;
+  }
+
+  struct HalfEdge {
+    std::size_t from, to;
+    int normal;
+    bool in_region;
+    bool operator<(const HalfEdge& o) const { return std::tie(from, to) < std::tie(o.from, o.to); }
+  };
+
+  // E over the triangles of `cubes`: triangle edges whose neighbour (in the
+  // cube or a face-adjacent one) has a different normal.
+  long local_energy(const std::vector<std::size_t>& cubes) const {
+    const std::vector<std::size_t> ring = with_face_neighbours(cubes);
     std::vector<HalfEdge> half;
     for (std::size_t cube : ring) {
       const bool in_region = std::binary_search(cubes.begin(), cubes.end(), cube);
@@ -259,18 +265,7 @@ class MaskEngine {
   std::size_t count_touchings(const std::vector<std::size_t>& cubes) const {
     // (global face key, diagonal axis) for every parallel face diagonal.
     std::vector<std::pair<std::size_t, std::size_t>> chords;
-    std::vector<std::size_t> ring = cubes;
-    for (std::size_t cube : cubes) {
-      const Int3 c = coords(cube);
-      for (int a = 0; a < 3; ++a)
-        for (int s : {-1, 1}) {
-          Int3 q = c;
-          q[static_cast<std::size_t>(a)] += s;
-          if (valid_cube(q)) ring.push_back(index(q));
-        }
-    }
-    std::sort(ring.begin(), ring.end());
-    ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+    const std::vector<std::size_t> ring = with_face_neighbours(cubes);
     for (std::size_t cube : ring) {
       const mc::CubeCase& cc = mc::case_table()[static_cast<std::size_t>(cube_config(cube))];
       for (const auto& t : cc.triangles)
