@@ -30,15 +30,18 @@ def main():
     ap.add_argument("--threads", type=int, default=0)
     ap.add_argument("--granularity", type=float, default=None)
     ap.add_argument("--only", nargs="*")
+    ap.add_argument("--no-masks", action="store_true")
     args = ap.parse_args()
     names = [m for m in MODELS if not args.only or any(m.startswith(o) for o in args.only)]
-    print("| model | facets MC | after masks | final | nets | Hausdorff | / spacing | refold error | refused | time (s) | peak MB |")
-    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    print("| model | facets MC | after masks | final | nets | Hausdorff | / spacing | after masks / spacing | refold error | refused | wall (s) | CPU (s) | peak MB |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     failed = False
     for name in names:
         out = os.path.join(args.out, os.path.splitext(name)[0])
         cmd = ["/usr/bin/time", "-v", args.subfab, "unfold", os.path.join(args.models, name), "-o", out,
                "--json", "--threads", str(args.threads)]
+        if args.no_masks:
+            cmd += ["--no-masks"]
         if args.granularity:
             cmd += ["--granularity", str(args.granularity)]
         t0 = time.monotonic()
@@ -46,6 +49,9 @@ def main():
         wall = time.monotonic() - t0
         m = re.search(r"Maximum resident set size \(kbytes\): (\d+)", r.stderr)
         peak = int(m.group(1)) / 1024.0 if m else float("nan")
+        u = re.search(r"User time \(seconds\): ([0-9.]+)", r.stderr)
+        sy = re.search(r"System time \(seconds\): ([0-9.]+)", r.stderr)
+        cpu = float(u.group(1)) + float(sy.group(1)) if u and sy else float("nan")
         if r.returncode != 0:
             failed = True
             last = [l for l in r.stderr.splitlines() if l.startswith("error") or l.startswith("internal")]
@@ -53,8 +59,9 @@ def main():
             continue
         j = json.loads(r.stdout)
         print(f"| {name} | {j['facets_mc']} | {j['facets_after_masks']} | {j['facets_final']} | {j['nets']} | "
-              f"{j['hausdorff']:.4g} | {j['hausdorff_over_spacing']:.3f} | {j['refold_error']:.2e} | "
-              f"{j['deletions_refused']} | {wall:.2f} | {peak:.0f} |")
+              f"{j['hausdorff']:.4g} | {j['hausdorff_over_spacing']:.3f} | "
+              f"{j['hausdorff_after_masks'] / j['spacing']:.3f} | {j['refold_error']:.2e} | "
+              f"{j['deletions_refused']} | {wall:.2f} | {cpu:.2f} | {peak:.0f} |")
         sys.stdout.flush()
     return 1 if failed else 0
 

@@ -29,6 +29,7 @@ struct UnfoldArgs {
   double min_facet_area = -1;
   std::string delete_facets;
   std::string sheet;
+  bool no_masks = false;
   CommonOptions common;
 };
 
@@ -78,6 +79,7 @@ int run_unfold(const UnfoldArgs& args) {
   SimplifyUnfoldableOptions options;
   options.granularity = args.granularity;
   options.min_facet_area = args.min_facet_area;
+  options.masks = !args.no_masks;
   if (!args.delete_facets.empty()) options.delete_facet_ids = parse_ids(args.delete_facets);
   ExportUnfoldingOptions export_options;
   if (!args.sheet.empty()) std::tie(export_options.sheet_width, export_options.sheet_height) = parse_sheet(args.sheet);
@@ -108,6 +110,7 @@ int run_unfold(const UnfoldArgs& args) {
     j["nets"] = s.nets;
     j["hausdorff"] = s.hausdorff;
     j["hausdorff_over_spacing"] = result.spacing > 0 ? s.hausdorff / result.spacing : 0.0;
+    j["hausdorff_after_masks"] = result.hausdorff_after_masks;
     j["refold_error"] = result.refold_error;
     j["deletions_refused"] = result.failures.size();
     std::cout << j.dump(2) << "\n";
@@ -143,6 +146,8 @@ const RegisterCommand kRegisterUnfold({"unfold", 30, [](CLI::App& app) {
   sub->add_option("--sheet", args->sheet,
                   "Sheet size WxH in model units; nets are packed on as many sheets as needed (default: one "
                   "large sheet)");
+  sub->add_flag("--no-masks", args->no_masks,
+                "Skip the mask stage (thesis 3.3.1, Appendix A): more facets, closer to the input");
   add_common_options(*sub, args->common);
   return std::pair<CLI::App*, std::function<int()>>{sub, [args] { return run_unfold(*args); }};
 }});

@@ -4,12 +4,14 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <memory>
 #include <optional>
 #include <set>
 #include <unordered_map>
 
 #include "subfab/core/error.h"
 #include "unfold/exact_poly_mesh.h"
+#include "unfold/hausdorff_distance.h"
 
 namespace subfab {
 
@@ -61,8 +63,14 @@ struct HalfLine {
 class HoleCloser {
  public:
   HoleCloser(ExactPolyMesh& mesh, const std::unordered_map<std::uint64_t, int>& owner,
-             const std::vector<int>& region, double max_extension)
-      : mesh_(mesh), owner_(owner), region_(region), max_extension_(max_extension) {}
+             const std::vector<int>& region, double max_extension, const unfold_detail::SurfaceDistance* reference,
+             double max_distance)
+      : mesh_(mesh),
+        owner_(owner),
+        region_(region),
+        max_extension_(max_extension),
+        reference_(reference),
+        max_distance_(max_distance) {}
 
   // Returns "" on success (mesh modified, region facets dead), else the reason
   // (mesh possibly half-modified: the caller restores it).
@@ -228,8 +236,9 @@ class HoleCloser {
   }
 
   bool within_extension(const QVec& p) const {
-    if (max_extension_ <= 0) return true;
     const Vec3 x = to_model(p, mesh_.frame);
+    if (reference_ && (*reference_)(x) > max_distance_) return false;
+    if (max_extension_ <= 0) return true;
     for (const Vec3& v : region_points_)
       if ((x - v).norm() <= max_extension_) return true;
     return false;
@@ -364,6 +373,8 @@ class HoleCloser {
   const std::unordered_map<std::uint64_t, int>& owner_;
   std::vector<int> region_;
   double max_extension_;
+  const unfold_detail::SurfaceDistance* reference_;
+  double max_distance_;
   std::vector<Vec3> region_points_;
   std::vector<int> cycle_;
   Vec3 region_normal_ = Vec3::Zero();
@@ -377,8 +388,14 @@ class HoleCloser {
 // Deletes `region` (facet ids) and validates; restores the mesh on failure.
 // On success, `touched` (if given) receives the facets whose loops changed or
 // that died.
+struct Limits {
+  double max_extension = 0;
+  const unfold_detail::SurfaceDistance* reference = nullptr;
+  double max_distance = 0;
+};
+
 std::string try_delete(ExactPolyMesh& mesh, const std::unordered_map<std::uint64_t, int>& owner,
-                       const std::vector<int>& region, double max_extension, std::size_t& num_merged,
+                       const std::vector<int>& region, const Limits& limits, std::size_t& num_merged,
                        std::vector<int>* touched = nullptr) {
   const std::vector<QFacet> saved_facets = mesh.facets;
   const std::size_t saved_points = mesh.points.size();
@@ -387,7 +404,8 @@ std::string try_delete(ExactPolyMesh& mesh, const std::unordered_map<std::uint64
     mesh.points.resize(saved_points);
     mesh.approx.resize(saved_points);
   };
-  std::string reason = HoleCloser(mesh, owner, region, max_extension).run();
+  std::string reason =
+      HoleCloser(mesh, owner, region, limits.max_extension, limits.reference, limits.max_distance).run();
   std::vector<int> changed;
   if (reason.empty()) {
     for (std::size_t f = 0; f < mesh.facets.size(); ++f)
@@ -454,7 +472,7 @@ DeleteFacetsResult delete_facets(const PolyMesh& input, const DeleteFacetsOption
           if (left.erase(n)) group.push_back(n);
       std::sort(group.begin(), group.end());
       bool alive = std::all_of(group.begin(), group.end(), [&](int f) { return mesh.facets[f].alive; });
-      std::string reason = alive ? try_delete(mesh, edge_owners(mesh), group, 0.0, result.num_merged)
+      std::string reason = alive ? try_delete(mesh, edge_owners(mesh), group, Limits{}, result.num_merged)
                                  : "a facet of the group was merged away by an earlier deletion";
       if (reason.empty()) {
         result.num_deleted += group.size();
@@ -466,6 +484,9 @@ DeleteFacetsResult delete_facets(const PolyMesh& input, const DeleteFacetsOption
   }
 
   if (options.min_facet_area > 0) {
+    std::unique_ptr<unfold_detail::SurfaceDistance> reference;
+    if (options.reference) reference = std::make_unique<unfold_detail::SurfaceDistance>(*options.reference);
+    const Limits limits{options.max_extension, reference.get(), options.max_distance_to_reference};
     // A failed attempt is retried only when a facet of the group or around
     // it has changed since (versions bumped by every successful deletion).
     std::vector<int> version(mesh.facets.size(), 0);
@@ -488,7 +509,7 @@ DeleteFacetsResult delete_facets(const PolyMesh& input, const DeleteFacetsOption
       auto st = stamp(group);
       const auto it = failed.find(group);
       if (it != failed.end() && it->second == st) return false;
-      const std::string r = try_delete(mesh, owner, group, options.max_extension, result.num_merged, &touched);
+      const std::string r = try_delete(mesh, owner, group, limits, result.num_merged, &touched);
       if (r.empty()) {
         for (int t : touched) ++version[t];
         owner = edge_owners(mesh);

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "subfab/core/parallel.h"
 
@@ -53,7 +54,29 @@ double one_sided(const Mesh& from, const Mesh& to, std::size_t samples) {
 
 }  // namespace
 
+struct SurfaceDistance::Impl {
+  std::vector<Triangle> triangles;
+  Tree tree;
+};
+
+SurfaceDistance::SurfaceDistance(const Mesh& mesh) : impl_(std::make_unique<Impl>()) {
+  for (const auto& f : mesh.faces)
+    impl_->triangles.emplace_back(to_point(mesh.vertices[f[0]]), to_point(mesh.vertices[f[1]]),
+                                  to_point(mesh.vertices[f[2]]));
+  impl_->tree.insert(impl_->triangles.begin(), impl_->triangles.end());
+  impl_->tree.build();
+  impl_->tree.accelerate_distance_queries();
+}
+
+SurfaceDistance::~SurfaceDistance() = default;
+
+double SurfaceDistance::operator()(const Vec3& p) const {
+  if (impl_->triangles.empty()) return std::numeric_limits<double>::infinity();
+  return std::sqrt(CGAL::to_double(impl_->tree.squared_distance(to_point(p))));
+}
+
 double hausdorff_distance(const Mesh& a, const Mesh& b, std::size_t samples_per_mesh) {
+  if (a.faces.empty() || b.faces.empty()) return a.faces.empty() && b.faces.empty() ? 0.0 : std::numeric_limits<double>::infinity();
   return std::max(one_sided(a, b, samples_per_mesh), one_sided(b, a, samples_per_mesh));
 }
 

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstddef>
+#include <memory>
 
 #include "subfab/mesh/mesh.h"
 
@@ -14,5 +15,19 @@ namespace subfab::unfold_detail {
 //! and a regular barycentric grid on each triangle, fine enough that about
 //! `samples_per_mesh` points cover each surface (model units).
 double hausdorff_distance(const Mesh& a, const Mesh& b, std::size_t samples_per_mesh = 200000);
+
+//! Distance from a point to a triangle mesh's surface (AABB tree), reusable.
+class SurfaceDistance {
+ public:
+  explicit SurfaceDistance(const Mesh& mesh);
+  ~SurfaceDistance();
+  SurfaceDistance(const SurfaceDistance&) = delete;
+  SurfaceDistance& operator=(const SurfaceDistance&) = delete;
+  double operator()(const Vec3& p) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 }  // namespace subfab::unfold_detail

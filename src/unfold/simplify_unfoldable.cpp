@@ -5,6 +5,7 @@
 #include <string>
 
 #include "subfab/core/error.h"
+#include "subfab/unfold/apply_masks.h"
 #include "subfab/unfold/build_lattice.h"
 #include "subfab/unfold/extract_charts.h"
 #include "subfab/unfold/marching_cubes.h"
@@ -19,18 +20,26 @@ SimplifyUnfoldableResult simplify_unfoldable(const Mesh& mesh, const SimplifyUnf
   Progress* progress = options.progress;
   SimplifyUnfoldableResult result;
 
-  // Stages 1-3 (lattice, marching cubes, charts).
+  // Stages 1-4 (lattice, marching cubes, charts, masks).
   const Lattice lattice = build_lattice(mesh, {.granularity = options.granularity, .progress = progress});
   const McSurface surface = marching_cubes(lattice, {.progress = progress});
   if (surface.mesh.faces.empty())
     throw InvalidArgumentError("the grid is too coarse for this model: no lattice point lies inside it; use a "
                                "smaller granularity (grid spacing " + std::to_string(lattice.grid.spacing) + ")");
-  Charts charts = extract_charts(surface.mesh, surface.normals, {.progress = progress});
+  const Charts charts = extract_charts(surface.mesh, surface.normals, {.progress = progress});
   result.spacing = lattice.grid.spacing;
   result.origin = lattice.grid.origin;
   result.summary.facets_mc = charts.poly.num_facets();
-  // Stage 4 (masks) is not in the pipeline yet: the charts go on unchanged.
-  PolyMesh poly = std::move(charts.poly);
+  PolyMesh poly;
+  Mesh masked_triangles;
+  if (options.masks) {
+    MaskResult masked = apply_masks(lattice, {.progress = progress});
+    masked_triangles = std::move(masked.surface.mesh);
+    poly = std::move(masked.charts.poly);
+  } else {
+    masked_triangles = surface.mesh;
+    poly = charts.poly;
+  }
   result.summary.facets_after_masks = poly.num_facets();
 
   // Stage 5: automatic deletion, then the ids the user gave (numbered as in
@@ -40,7 +49,10 @@ SimplifyUnfoldableResult simplify_unfoldable(const Mesh& mesh, const SimplifyUnf
   DeleteFacetsResult deleted = delete_facets(poly, {.min_facet_area = result.min_facet_area,
                                                     .grid_origin = result.origin,
                                                     .grid_step = s,
-                                                    .max_extension = s,
+                                                    .max_extension = 1.5 * s,
+                                                    .reference = &mesh,
+                                                    .max_distance_to_reference = 1.5 * s,
+                                                    .max_group_size = 2,
                                                     .progress = progress});
   result.failures = deleted.failures;
   if (!options.delete_facet_ids.empty()) {
@@ -72,6 +84,7 @@ SimplifyUnfoldableResult simplify_unfoldable(const Mesh& mesh, const SimplifyUnf
                            " (more than 1e-9 of the diagonal)");
     const Mesh triangles = unfold_detail::triangulate_facets(result.mesh);
     result.summary.hausdorff = unfold_detail::hausdorff_distance(mesh, triangles, 60000);
+    result.hausdorff_after_masks = unfold_detail::hausdorff_distance(mesh, masked_triangles, 30000);
     if (progress) {
       progress->info(std::to_string(result.summary.facets_final) + " facets, " +
                      std::to_string(result.summary.nets) + " nets, Hausdorff distance " +

@@ -313,6 +313,10 @@ class Grower {
         }
         moved.push_back(std::move(p));
       }
+      // the moved net must still be overlap-free in itself (rounding of the motion)
+      for (std::size_t i = 0; ok && i < moved.size(); ++i)
+        for (std::size_t k = i + 1; ok && k < moved.size(); ++k)
+          if (interiors_overlap(moved[i], moved[k])) ok = false;
       if (!ok) continue;
       for (std::size_t i = 0; i < members_[s].size(); ++i) layout_.polys[members_[s][i]] = std::move(moved[i]);
       layout_.folds.push_back({t, sf, u, v});

@@ -46,6 +46,12 @@ struct DeleteFacetsOptions {
   //! A deletion is refused when a new vertex lies farther than this from
   //! every vertex of the deleted facets (model units); 0 = no limit.
   double max_extension = 0;
+  //! When set, a deletion is refused when a new vertex lies farther than
+  //! max_distance_to_reference from this surface (model units): keeps the
+  //! simplified mesh close to the input (the unfold command passes the input
+  //! mesh and 1.5 x grid spacing).
+  const Mesh* reference = nullptr;
+  double max_distance_to_reference = 0;  // model units
   //! Automatic pass: when a small facet cannot be deleted alone, it is tried
   //! together with up to (max_group_size - 1) adjacent facets whose area is
   //! below group_area_factor x min_facet_area.

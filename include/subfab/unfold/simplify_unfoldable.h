@@ -33,6 +33,7 @@ struct SimplifyUnfoldableOptions {
   //! Facet ids to delete as well, numbered as in the result of the same call
   //! without them (after the automatic deletion); adjacent ids go together.
   std::vector<int> delete_facet_ids;
+  bool masks = true;  // run stage 4 (false: the charts go to deletion unchanged)
   Progress* progress = nullptr;  // stages, counts, warnings; may be null
 };
 
@@ -45,6 +46,7 @@ struct SimplifyUnfoldableResult {
   Vec3 origin = Vec3::Zero();  // lattice origin (model units)
   double min_facet_area = 0;   // area threshold used (model units^2)
   double refold_error = 0;     // largest refolded-corner error (model units)
+  double hausdorff_after_masks = 0;  // Hausdorff distance input <-> mask-stage surface (model units)
   std::vector<FacetDeletionFailure> failures;  // deletions refused, with reasons
 };
 
