@@ -7,6 +7,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <unordered_map>
 
 #include "decompose/solid_index.h"
 #include "subfab/core/error.h"
@@ -97,8 +98,9 @@ struct SizeLimits {
 
 class Grower {
  public:
-  Grower(const SolidIndex& index, const std::array<HeightField, 6>& fields, const SizeLimits& limits)
-      : index_(index), fields_(fields), grid_(fields[0].grid), limits_(limits) {
+  Grower(const SolidIndex& index, const std::array<HeightField, 6>& fields, const SizeLimits& limits,
+         bool maximal)
+      : index_(index), fields_(fields), grid_(fields[0].grid), limits_(limits), maximal_(maximal) {
     for (int d = 0; d < 3; ++d) {
       domain_.min[d] = grid_.coordinate(d, 0);
       domain_.max[d] = grid_.coordinate(d, grid_.num_points[static_cast<std::size_t>(d)] - 1);
@@ -170,6 +172,16 @@ class Grower {
       const int dim = best / 2, side = (best % 2) ? +1 : -1;
       if (!move(b, axis, dim, side, best_target)) frozen[static_cast<std::size_t>(best)] = true;
     }
+    // 4. Make the box maximal: push every side to first contact (or the
+    //    size limit / grid domain), the sides across the axis first; then
+    //    no side can move without breaking validity or a limit.
+    if (maximal_) {
+      const int ad = axis_dimension(axis);
+      for (int k = 1; k <= 3; ++k) {
+        const int dim = (ad + k) % 3;
+        for (int side : {+1, -1}) move(b, axis, dim, side, side > 0 ? domain_.max[dim] : domain_.min[dim]);
+      }
+    }
     if (!index_.face_covered(face, b, axis)) return std::nullopt;
     shrink_to_coverage(b, axis);
     return b;
@@ -221,6 +233,7 @@ class Grower {
   const std::array<HeightField, 6>& fields_;
   const GridGeometry& grid_;
   SizeLimits limits_;
+  bool maximal_;
   Box3 domain_;
 };
 
@@ -243,6 +256,52 @@ Vec3 centroid(const Mesh& mesh, int f) {
   return (mesh.vertices[static_cast<std::size_t>(t[0])] + mesh.vertices[static_cast<std::size_t>(t[1])] +
           mesh.vertices[static_cast<std::size_t>(t[2])]) /
          3.0;
+}
+
+//! A face that shares an edge with a neighbour such that no axis the face
+//! faces is faced by the neighbour too, and the edge lies in no axis-aligned
+//! plane, can never lie in a valid box: the interior of the edge would be
+//! inside the open box and so would the neighbour near it. Refinement cannot
+//! help (the children along the edge inherit the problem). Returns a
+//! description of the first such crease among `faces`, or "" if none.
+std::string impossible_crease(const SolidIndex& index, const std::vector<int>& faces,
+                              const std::vector<int>& parent_face) {
+  const Mesh& mesh = index.mesh();
+  std::unordered_map<std::uint64_t, int> directed;  // (from, to) -> face
+  auto key = [](int a, int b) {
+    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
+  };
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const Triangle& t = mesh.faces[f];
+    for (int e = 0; e < 3; ++e) directed.emplace(key(t[e], t[(e + 1) % 3]), static_cast<int>(f));
+  }
+  for (int f : faces) {
+    const Triangle& t = mesh.faces[static_cast<std::size_t>(f)];
+    for (int e = 0; e < 3; ++e) {
+      const int u = t[e], v = t[(e + 1) % 3];
+      const Vec3& pu = mesh.vertices[static_cast<std::size_t>(u)];
+      const Vec3& pv = mesh.vertices[static_cast<std::size_t>(v)];
+      if (pu.x() == pv.x() || pu.y() == pv.y() || pu.z() == pv.z()) continue;
+      const auto it = directed.find(key(v, u));
+      if (it == directed.end()) continue;
+      const int g = it->second;
+      bool common = false;
+      for (Axis a : kAllAxes) common = common || (index.facing_sign(f, a) >= 0 && index.facing_sign(g, a) >= 0);
+      if (common) continue;
+      const Vec3 nf = face_unit_normal(mesh, static_cast<std::size_t>(f));
+      const Vec3 ng = face_unit_normal(mesh, static_cast<std::size_t>(g));
+      const double angle = std::acos(std::clamp(nf.dot(ng), -1.0, 1.0)) * 180.0 / M_PI;
+      std::ostringstream msg;
+      msg << "cannot cover face " << parent_face[static_cast<std::size_t>(f)] << " of the input: its edge with face "
+          << parent_face[static_cast<std::size_t>(g)] << " (between (" << pu.transpose() << ") and ("
+          << pv.transpose() << ")) is a crease whose two sides no axis-aligned milling direction sees together "
+          << "(normals " << angle << " degrees apart, edge not axis-aligned), so no valid height-field box can "
+          << "contain it and local refinement cannot help; smooth or repair the mesh there (a fold or a very "
+          << "thin groove/fin)";
+      return msg.str();
+    }
+  }
+  return {};
 }
 
 void check_options(const GrowOptions& o) {
@@ -278,7 +337,7 @@ GrowResult grow_boxes(const Mesh& mesh, const GrowOptions& options) {
 
   for (int level = 0;; ++level) {
     const SolidIndex index(result.mesh);
-    const Grower grower(index, fields, limits);
+    const Grower grower(index, fields, limits, true);
     const int nf = index.num_faces();
     // Boxes from before a refinement stay valid (same surface); re-check
     // exactly anyway since midpoints are rounded.
@@ -363,6 +422,8 @@ GrowResult grow_boxes(const Mesh& mesh, const GrowOptions& options) {
     for (int f = 0; f < nf; ++f)
       if (!covered[static_cast<std::size_t>(f)]) uncovered.push_back(f);
     if (uncovered.empty()) break;
+    if (const std::string why = impossible_crease(index, uncovered, result.parent_face); !why.empty())
+      throw AlgorithmError(why);
     if (level >= options.max_refinement_levels) {
       const int f = uncovered.front();
       std::ostringstream msg;

@@ -139,7 +139,31 @@ TEST(GrowBoxes, ImpossibleCornerIsReportedNotLeftUncovered) {
   transform_mesh(plate, rot, Vec3::Zero());
   GrowOptions options;
   options.max_refinement_levels = 2;
-  EXPECT_THROW(grow_boxes(plate, options), AlgorithmError);
+  try {
+    grow_boxes(plate, options);
+    ADD_FAILURE() << "expected AlgorithmError";
+  } catch (const AlgorithmError& e) {
+    EXPECT_NE(std::string(e.what()).find("refinement"), std::string::npos) << e.what();
+  }
+}
+
+TEST(GrowBoxes, ThinFinCreaseFailsAtOnceWithAReason) {
+  // A sliver tetrahedron: faces ABC and ABD meet at a ~1 degree fin along
+  // the generic edge AB. No axis faces both, so no box can contain AB:
+  // refinement cannot help and grow_boxes must say so (not loop 8 levels).
+  const Vec3 a(0, 0, 0), b(1, 0.3, 0.2), p(0.3, 0.9, -0.4);
+  const Vec3 n = (b - a).cross(p - a).normalized();
+  Mesh fin;
+  fin.vertices = {a, b, p + 0.01 * n, p - 0.01 * n};
+  fin.faces = {{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}};
+  if (signed_volume(fin) < 0)
+    for (Triangle& t : fin.faces) std::swap(t[1], t[2]);
+  try {
+    grow_boxes(fin, {});
+    ADD_FAILURE() << "expected AlgorithmError";
+  } catch (const AlgorithmError& e) {
+    EXPECT_NE(std::string(e.what()).find("crease"), std::string::npos) << e.what();
+  }
 }
 
 TEST(GrowBoxes, IdenticalWhateverTheThreadCount) {

@@ -16,13 +16,17 @@
 //!         (the thesis's field integral, minimised greedily), each move
 //!         limited EXACTLY by first contact with a triangle facing away from
 //!         the axis (SolidIndex::push_face) and by the size limits; stop when
-//!         no move gains anything; shrink each side back to the covered
-//!         triangles when that loses no coverage;
+//!         no move gains anything; then push every side to first contact
+//!         (a maximal box); shrink each side back to the covered triangles
+//!         when that loses no coverage;
 //!      c. coverage of the new boxes (exact rule of SolidIndex);
 //!   3. faces no axis can cover (a triangle larger than the local feature
 //!      size: a facing-away triangle crosses its own bounding box) are split
 //!      one-to-four (refine_mesh, Section 4.3.5) and seeding goes on, up to
-//!      `max_refinement_levels` times.
+//!      `max_refinement_levels` times. A face with a crease no axis sees
+//!      from both sides (an edge in no axis-aligned plane between faces
+//!      with no common facing axis: a fold, thin fin or groove) can never be
+//!      covered: AlgorithmError at once, naming the edge.
 //! Every box returned is exactly valid and every face of the returned mesh
 //! is covered by at least one box. Deterministic for any thread count.
 #pragma once
