@@ -1,0 +1,64 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file carve_blocks.h
+//! Carving (thesis Sections 4.2 and 4.3.3, the Boolean stage "B" of
+//! Table 4.1): turns the ordered height boxes into solid blocks,
+//!
+//!   block_i = solid ∩ (B_i \ (B_0 ∪ ... ∪ B_{i-1})),
+//!
+//! computed exactly (CGAL corefinement on an exact kernel), then split into
+//! connected pieces; pieces that touch no part of the input surface are
+//! dropped (the interior may stay empty, thesis 4.1).
+//!
+//! Outline:
+//!   for every box i (in parallel, each independent of the others):
+//!     P = clip(solid, B_i)                      exact, closed
+//!     for every earlier box j whose interior meets B_i: P = P \ B_j
+//!       (if a difference would be non-manifold, B_i \ ∪ B_j is cut into
+//!        disjoint boxes instead and each is clipped separately)
+//!     split P into connected pieces, keep those touching the input surface
+//!   round every kept piece to doubles, in box order.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "subfab/core/progress.h"
+#include "subfab/decompose/axis.h"
+#include "subfab/decompose/height_box.h"
+#include "subfab/mesh/mesh.h"
+
+namespace subfab {
+
+//! One solid block of the decomposition, in the canonical frame.
+struct Block {
+  Mesh mesh;              // closed, outward-oriented triangle mesh (model units)
+  Axis axis = Axis::PosZ; // milling direction: the base faces -axis
+  int source_box = -1;    // index of the ordered box it was carved from
+};
+
+//! Options of carve_blocks().
+struct CarveOptions {
+  Progress* progress = nullptr;  // stage progress and warnings (nullptr: silent)
+};
+
+//! What carve_blocks() produced and what it had to do.
+struct CarveResult {
+  std::vector<Block> blocks;             // ordered by source box, then by piece
+  std::size_t num_dropped_pieces = 0;    // pieces touching no input surface (interior)
+  std::size_t num_split_regions = 0;     // boxes whose region had to be cut into disjoint boxes
+  std::size_t num_degenerate_faces = 0;  // faces that became zero-area when rounded to doubles
+  std::size_t num_flipped_faces = 0;     // faces whose normal flipped when rounded to doubles
+};
+
+//! Carves the blocks of `ordered_boxes` out of `solid`.
+//! \param solid          closed, outward-oriented, self-intersection-free mesh
+//!                       (canonical frame, the mesh the boxes were grown on)
+//! \param ordered_boxes  the boxes in carving order (earlier boxes take
+//!                       precedence where they overlap), canonical frame
+//! \return the blocks (double coordinates; each a closed, oriented 2-manifold
+//!         piece of one region), ordered by box then by piece.
+//! \throw AlgorithmError when an exact boolean cannot produce a manifold piece.
+CarveResult carve_blocks(const Mesh& solid, const std::vector<HeightBox>& ordered_boxes,
+                         const CarveOptions& options = {});
+
+}  // namespace subfab

@@ -1,0 +1,67 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file decompose.h
+//! The whole height-field block decomposition of thesis Chapter 4:
+//!
+//!   orient (4.3.1) -> fields (4.3.2) -> grow boxes (4.3.2, App. B)
+//!   -> minimal cover (4.3.2, CBC) -> resolve overlaps (4.3.3: conflict
+//!   graph, cycle splits, carve order) -> carve (exact booleans)
+//!   -> merge (4.3.4 post-processing)
+//!
+//! Everything happens in the canonical frame (canonical = rotation x input);
+//! export_decomposition() writes the blocks back in the input's frame.
+#pragma once
+
+#include <limits>
+#include <optional>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "subfab/core/progress.h"
+#include "subfab/decompose/carve_blocks.h"
+#include "subfab/mesh/mesh.h"
+
+namespace subfab {
+
+//! Options of decompose() (the `subfab decompose` options).
+struct DecomposeOptions {
+  double max_height_fraction = std::numeric_limits<double>::infinity();  // --max-height: x bbox diagonal (inf = none)
+  double max_height_abs = std::numeric_limits<double>::infinity();       // --max-height-abs: model units (inf = none)
+  std::optional<Vec3> machine;  // --machine X,Y,Z: work volume, model units; Z along the milling direction
+  bool orient = true;           // false: --no-orient, keep the input frame
+  double grid_factor = 1.0;     // --grid-factor: grid spacing = average edge length x this (> 0)
+  double cover_time_limit_s = 60.0;  // CBC time limit, seconds
+  bool merge = true;            // merge adjacent same-direction blocks (4.3.4)
+  Progress* progress = nullptr; // stage progress (nullptr = silent)
+};
+
+//! Wall time of each stage, seconds.
+struct DecomposeTimings {
+  double orient = 0, field = 0, grow = 0, cover = 0, resolve = 0, carve = 0, total = 0;
+};
+
+//! Result of decompose().
+struct DecomposeResult {
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  // canonical = rotation x input
+  Mesh canonical;            // the (possibly locally refined) input in the canonical frame
+  std::size_t num_input_vertices = 0;  // canonical vertices [0, this) are the input's vertices, same ids
+  double max_height = std::numeric_limits<double>::infinity();  // the height limit used (model units)
+  std::vector<Block> blocks; // the blocks, canonical frame
+  DecomposeTimings timings;
+  // statistics
+  std::size_t num_grown_boxes = 0;
+  std::size_t num_selected_boxes = 0;
+  std::size_t num_ordered_boxes = 0;   // after cycle splits
+  int num_refined_faces = 0;
+  int num_cycle_splits = 0;
+  std::size_t num_merges = 0;
+  bool cover_optimal = false;
+};
+
+//! Decomposes a closed solid into height-field blocks (thesis Chapter 4).
+//! \param input closed, manifold, outward-oriented, self-intersection-free mesh
+//!        (pass it through require_closed_solid first)
+//! \throw InvalidArgumentError on bad options; AlgorithmError when a stage fails.
+DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options);
+
+}  // namespace subfab

@@ -1,0 +1,157 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file validate_decomposition.h
+//! Checkers for a height-field block decomposition (thesis Section 4.2, the
+//! six validity conditions), usable on their own by tests and users and
+//! together by validate_decomposition() (`subfab validate`):
+//!   1. every block is a closed, oriented 2-manifold with positive volume;
+//!   2. height field: every face whose unit normal n has n.d < -1e-3 lies on
+//!      the block's base plane (all its vertices at the minimum of v.d);
+//!   3. no two blocks overlap (exact intersection volume <= 1e-6 of the smaller);
+//!   4. every block lies inside the input (exact volume outside <= 1e-6 of the block);
+//!   5. coverage: area-weighted samples of the input surface lie within
+//!      1e-5 x bbox diagonal of some block's boundary;
+//!   6. height and machine-size limits hold;
+//!   7. each machine mesh is its block moved rigidly (direction to +Z, base on z = 0).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "subfab/core/progress.h"
+#include "subfab/mesh/mesh.h"
+
+namespace subfab {
+
+// ---------------------------------------------------------------- check 1
+//! Topology and volume of one block.
+struct SolidReport {
+  std::size_t num_faces = 0;
+  std::size_t num_boundary_edges = 0;       // directed edges without an opposite twin
+  std::size_t num_non_manifold_edges = 0;   // undirected edges with more than 2 faces, or
+                                            // used twice in the same direction (orientation flip)
+  std::size_t num_non_manifold_vertices = 0;  // vertices whose faces form more than one fan
+  std::size_t num_degenerate_faces = 0;     // zero-area faces (reported, not a failure)
+  double volume = 0.0;                      // signed volume (model units^3)
+  bool ok() const {
+    return num_faces > 0 && num_boundary_edges == 0 && num_non_manifold_edges == 0 &&
+           num_non_manifold_vertices == 0 && volume > 0.0;
+  }
+};
+
+//! Checks that `block` is a closed, consistently oriented 2-manifold with
+//! positive volume (combinatorial check on the indexed faces).
+SolidReport check_closed_solid(const Mesh& block);
+
+// ---------------------------------------------------------------- check 2
+//! Options of check_height_field().
+struct HeightFieldOptions {
+  double normal_tolerance = 1e-3;  // faces with unit n.d below -this must lie on the base (unitless)
+  double plane_tolerance = 0.0;    // max |v.d - base| of a base vertex (model units; 0 = 1e-9 x block size)
+};
+
+//! Result of check_height_field().
+struct HeightFieldReport {
+  double base = 0.0;                 // min over vertices of v.d (model units)
+  double height = 0.0;               // max - min of v.d (model units)
+  std::size_t num_overhang_faces = 0;  // faces facing away from d that are not on the base
+  double worst_cosine = 0.0;         // most negative n.d among those faces (0 if none)
+  bool ok() const { return num_overhang_faces == 0; }
+};
+
+//! Height-field test along the unit milling direction `direction` (the tool
+//! comes from +direction; the base faces -direction), thesis Section 4.2.
+HeightFieldReport check_height_field(const Mesh& block, const Vec3& direction,
+                                     const HeightFieldOptions& options = {});
+
+//! True when check_height_field() finds no overhang.
+bool is_height_field(const Mesh& block, const Vec3& direction, const HeightFieldOptions& options = {});
+
+// ------------------------------------------------------------ checks 3, 4
+//! Volume of the intersection of two closed solids, computed with exact
+//! booleans (CGAL corefinement on an exact kernel). 0 when their bounding
+//! boxes do not overlap. \throw AlgorithmError if the boolean fails.
+double blocks_overlap(const Mesh& a, const Mesh& b);
+
+//! Volume of `block` outside the closed solid `solid` (exact booleans).
+//! \throw AlgorithmError if the boolean fails.
+double volume_outside(const Mesh& block, const Mesh& solid);
+
+// ---------------------------------------------------------------- check 5
+//! Options of surface_coverage().
+struct CoverageOptions {
+  std::size_t num_samples = 20000;  // area-weighted samples of the input surface (plus every vertex)
+  double tolerance = 0.0;           // max distance to a block boundary (model units; 0 = 1e-5 x diagonal)
+  std::uint64_t seed = 1;           // sampling seed (results are deterministic)
+};
+
+//! Result of surface_coverage().
+struct CoverageReport {
+  std::size_t num_samples = 0;
+  std::size_t num_uncovered = 0;  // samples farther than the tolerance from every block
+  double max_distance = 0.0;      // largest sample distance to the blocks (model units)
+  double tolerance = 0.0;         // the tolerance used (model units)
+  Vec3 worst_point = Vec3::Zero();
+  bool ok() const { return num_samples > 0 && num_uncovered == 0; }
+};
+
+//! Samples the surface of `input` (area-weighted, deterministic) and measures
+//! each sample's distance to the union of the block surfaces (AABB tree).
+CoverageReport surface_coverage(const Mesh& input, const std::vector<const Mesh*>& blocks,
+                                const CoverageOptions& options = {});
+
+// ----------------------------------------------------------- all checks
+//! One block as exported (input coordinates).
+struct ValidationBlock {
+  Mesh mesh;                              // the block, input coordinates
+  Vec3 direction = Vec3::UnitZ();         // unit milling direction, input coordinates
+  std::optional<Mesh> machine_mesh;       // the exported machine mesh, if any
+  Eigen::Matrix4d machine_transform = Eigen::Matrix4d::Identity();  // input -> machine coordinates
+};
+
+//! Limits the decomposition was asked to respect (model units).
+struct ValidationLimits {
+  double max_height = std::numeric_limits<double>::infinity();  // block height along its direction
+  std::optional<Vec3> machine;  // work volume X, Y, Z; Z along the milling direction
+};
+
+//! Options of validate_decomposition().
+struct ValidationOptions {
+  double normal_tolerance = 1e-3;     // check 2 (unitless cosine)
+  double overlap_tolerance = 1e-6;    // check 3: overlap volume / smaller block volume
+  double outside_tolerance = 1e-6;    // check 4: volume outside / block volume
+  std::size_t num_coverage_samples = 20000;  // check 5
+  double coverage_tolerance = 1e-5;   // check 5: distance / bbox diagonal
+  double limit_tolerance = 1e-6;      // check 6 and 7: slack / bbox diagonal
+  ValidationLimits limits;            // check 6
+  Progress* progress = nullptr;       // progress per check (nullptr: silent)
+};
+
+//! Outcome of one of the seven checks.
+struct CheckReport {
+  std::string name;                   // "closed solid", "height field", ...
+  bool passed = true;
+  std::string summary;                // one line: what was measured
+  std::vector<std::string> failures;  // one line per failing item (at most 20 kept)
+  std::size_t num_failures = 0;       // all failing items
+};
+
+//! Outcome of validate_decomposition().
+struct ValidationReport {
+  std::vector<CheckReport> checks;  // the seven checks, in order
+  bool passed() const {
+    for (const CheckReport& c : checks)
+      if (!c.passed) return false;
+    return !checks.empty();
+  }
+};
+
+//! Runs the seven checks on a decomposition of `input` (thesis Section 4.2).
+//! Pairwise overlaps use exact booleans only for pairs whose bounding boxes overlap.
+ValidationReport validate_decomposition(const Mesh& input, const std::vector<ValidationBlock>& blocks,
+                                        const ValidationOptions& options = {});
+
+}  // namespace subfab

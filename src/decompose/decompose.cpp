@@ -1,0 +1,147 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "subfab/decompose/decompose.h"
+
+#include <chrono>
+#include <cmath>
+#include <string>
+
+#include "subfab/core/error.h"
+#include "subfab/decompose/compute_field.h"
+#include "subfab/decompose/grow_boxes.h"
+#include "subfab/decompose/merge_blocks.h"
+#include "subfab/decompose/orient_mesh.h"
+#include "subfab/decompose/resolve_overlaps.h"
+#include "subfab/decompose/select_cover.h"
+
+namespace subfab {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+void check_options(const DecomposeOptions& o) {
+  if (std::isnan(o.max_height_fraction) || o.max_height_fraction <= 0)
+    throw InvalidArgumentError("--max-height must be a positive fraction of the bounding-box diagonal");
+  if (std::isnan(o.max_height_abs) || o.max_height_abs <= 0)
+    throw InvalidArgumentError("--max-height-abs must be a positive length in model units");
+  if (!(o.grid_factor > 0) || !std::isfinite(o.grid_factor))
+    throw InvalidArgumentError("--grid-factor must be a positive number");
+  if (o.machine && !((o.machine->array() > 0).all() && o.machine->allFinite()))
+    throw InvalidArgumentError("--machine sizes must be positive numbers in model units");
+  if (!(o.cover_time_limit_s > 0)) throw InvalidArgumentError("the cover time limit must be positive");
+}
+
+}  // namespace
+
+DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
+  check_options(options);
+  Progress* progress = options.progress;
+  const auto start = Clock::now();
+  DecomposeResult result;
+  result.num_input_vertices = input.num_vertices();
+  const double diagonal = bounding_box(input).diagonal();
+  result.max_height = std::min(options.max_height_fraction * diagonal, options.max_height_abs);
+  const Vec3 machine = options.machine ? *options.machine : Vec3::Constant(std::numeric_limits<double>::infinity());
+
+  // 1. orient (4.3.1)
+  {
+    StageScope stage(progress, "orient");
+    const auto t = Clock::now();
+    if (options.orient) {
+      OrientOptions o;
+      o.progress = progress;
+      result.rotation = orient_mesh(input, o).rotation;
+    }
+    result.canonical = input;
+    if (!result.rotation.isIdentity(0.0)) transform_mesh(result.canonical, result.rotation, Vec3::Zero());
+    result.timings.orient = seconds_since(t);
+  }
+
+  // 2. fields (4.3.2)
+  std::array<HeightField, 6> fields;
+  {
+    StageScope stage(progress, "field");
+    const auto t = Clock::now();
+    FieldOptions o;
+    o.grid_factor = options.grid_factor;
+    o.max_height = result.max_height;
+    o.progress = progress;
+    fields = compute_fields(result.canonical, o);
+    result.timings.field = seconds_since(t);
+  }
+
+  // 3. grow (4.3.2, Appendix B; local refinement 4.3.5)
+  GrowResult grown;
+  {
+    StageScope stage(progress, "grow");
+    const auto t = Clock::now();
+    GrowOptions o;
+    o.grid_factor = options.grid_factor;
+    o.max_height = result.max_height;
+    o.machine_size = machine;
+    o.fields = &fields;
+    o.progress = progress;
+    grown = grow_boxes(result.canonical, o);
+    result.num_grown_boxes = grown.boxes.size();
+    result.num_refined_faces = grown.num_refined_faces;
+    result.timings.grow = seconds_since(t);
+  }
+  result.canonical = grown.mesh;
+
+  // 4. minimal cover (4.3.2, ILP with CBC)
+  std::vector<HeightBox> selected;
+  {
+    StageScope stage(progress, "cover");
+    const auto t = Clock::now();
+    CoverOptions o;
+    o.time_limit_s = options.cover_time_limit_s;
+    o.progress = progress;
+    o.preference.reserve(grown.boxes.size());
+    for (const HeightBox& b : grown.boxes) o.preference.push_back(b.box.volume());
+    const CoverResult cover = select_cover(grown.covered, grown.mesh.num_faces(), o);
+    for (int b : cover.selected) selected.push_back(grown.boxes[static_cast<std::size_t>(b)]);
+    result.num_selected_boxes = selected.size();
+    result.cover_optimal = cover.optimal;
+    result.timings.cover = seconds_since(t);
+  }
+
+  // 5. resolve overlaps: conflict graph, cycle splits, carve order (4.3.3)
+  std::vector<HeightBox> ordered;
+  {
+    StageScope stage(progress, "resolve");
+    const auto t = Clock::now();
+    ResolveOptions o;
+    o.progress = progress;
+    ResolveResult r = resolve_overlaps(result.canonical, std::move(selected), o);
+    ordered = std::move(r.ordered);
+    result.num_ordered_boxes = ordered.size();
+    result.num_cycle_splits = r.num_splits;
+    result.timings.resolve = seconds_since(t);
+  }
+
+  // 6. carve (exact booleans) and 7. merge (4.3.4 post-processing)
+  {
+    StageScope stage(progress, "carve");
+    const auto t = Clock::now();
+    CarveOptions co;
+    co.progress = progress;
+    CarveResult carved = carve_blocks(result.canonical, ordered, co);
+    if (options.merge) {
+      MergeOptions mo;
+      mo.max_height = result.max_height;
+      mo.machine_size = machine;
+      mo.progress = progress;
+      MergeResult merged = merge_blocks(std::move(carved.blocks), mo);
+      result.blocks = std::move(merged.blocks);
+      result.num_merges = merged.num_merges;
+    } else {
+      result.blocks = std::move(carved.blocks);
+    }
+    result.timings.carve = seconds_since(t);
+  }
+  result.timings.total = seconds_since(start);
+  return result;
+}
+
+}  // namespace subfab

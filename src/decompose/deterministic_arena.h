@@ -1,0 +1,56 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file deterministic_arena.h
+//! Private: makes CGAL's exact booleans give the same triangulation whatever
+//! thread runs them.
+//!
+//! CGAL's corefinement breaks ties between equal bounding-box coordinates
+//! by comparing box ADDRESSES (Box_intersection_d::ID_FROM_BOX_ADDRESS), and
+//! our axis-aligned boxes create such ties all the time. The order of heap
+//! addresses depends on which thread allocated what before, so the same
+//! boolean run on another thread could triangulate its cut faces
+//! differently. While a DeterministicArena lives, every `operator new` of
+//! the current thread is served by a private bump allocator over one
+//! reserved address range: addresses then grow with allocation order, which
+//! is a property of the computation alone. Memory is given back when the
+//! arena ends, all at once.
+//!
+//! Rules: every object allocated while the arena is active must be
+//! destroyed before the arena ends (results the caller keeps must be built
+//! under a SuspendArena), and exceptions must not carry arena strings out.
+#pragma once
+
+#include <cstddef>
+
+namespace subfab::detail {
+
+//! RAII: the current thread allocates from a fresh private arena.
+class DeterministicArena {
+ public:
+  //! \param reserve_bytes address space reserved (not committed) for the arena
+  explicit DeterministicArena(std::size_t reserve_bytes = std::size_t{64} << 30);
+  ~DeterministicArena();
+  DeterministicArena(const DeterministicArena&) = delete;
+  DeterministicArena& operator=(const DeterministicArena&) = delete;
+  //! Bytes handed out so far.
+  std::size_t used_bytes() const;
+  //! False when the address range could not be reserved (then nothing changes).
+  bool active() const;
+
+ private:
+  void* state_;
+};
+
+//! RAII: while it lives, new allocations of this thread come from the normal
+//! heap again (frees of arena memory are still recognised).
+class SuspendArena {
+ public:
+  SuspendArena();
+  ~SuspendArena();
+  SuspendArena(const SuspendArena&) = delete;
+  SuspendArena& operator=(const SuspendArena&) = delete;
+
+ private:
+  bool was_active_;
+};
+
+}  // namespace subfab::detail

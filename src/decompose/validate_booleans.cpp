@@ -1,0 +1,122 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The CGAL parts of validate_decomposition.h: exact overlap and outside
+// volumes (corefinement on an exact kernel) and the coverage distances
+// (AABB tree on exact predicates).
+#include <CGAL/AABB_face_graph_triangle_primitive.h>
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/corefinement.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "decompose/exact_mesh.h"
+#include "subfab/core/error.h"
+#include "subfab/decompose/validate_decomposition.h"
+
+namespace subfab {
+namespace {
+
+namespace PMP = CGAL::Polygon_mesh_processing;
+using detail::ExactMesh;
+
+double mesh_volume(const ExactMesh& m) { return signed_volume(detail::to_double(m)); }
+
+bool boxes_overlap(const BoundingBox& a, const BoundingBox& b) {
+  return (a.min.array() < b.max.array()).all() && (b.min.array() < a.max.array()).all();
+}
+
+}  // namespace
+
+double blocks_overlap(const Mesh& a, const Mesh& b) {
+  if (!boxes_overlap(bounding_box(a), bounding_box(b))) return 0.0;
+  {
+    ExactMesh ea = detail::to_exact(a), eb = detail::to_exact(b), out;
+    if (PMP::corefine_and_compute_intersection(ea, eb, out)) return std::max(0.0, mesh_volume(out));
+  }
+  // The intersection is not a 2-manifold (the blocks touch along an edge):
+  // measure it as vol(a) - vol(a \ b) instead.
+  ExactMesh ea = detail::to_exact(a), eb = detail::to_exact(b), out;
+  if (PMP::corefine_and_compute_difference(ea, eb, out))
+    return std::max(0.0, signed_volume(a) - mesh_volume(out));
+  throw AlgorithmError("exact intersection of two blocks is not a 2-manifold");
+}
+
+double volume_outside(const Mesh& block, const Mesh& solid) {
+  if (!boxes_overlap(bounding_box(block), bounding_box(solid))) return signed_volume(block);
+  {
+    ExactMesh eb = detail::to_exact(block), es = detail::to_exact(solid), out;
+    if (PMP::corefine_and_compute_difference(eb, es, out)) return std::max(0.0, mesh_volume(out));
+  }
+  ExactMesh eb = detail::to_exact(block), es = detail::to_exact(solid), out;
+  if (PMP::corefine_and_compute_intersection(eb, es, out))
+    return std::max(0.0, signed_volume(block) - mesh_volume(out));
+  throw AlgorithmError("exact difference of a block and the input is not a 2-manifold");
+}
+
+CoverageReport surface_coverage(const Mesh& input, const std::vector<const Mesh*>& blocks,
+                                const CoverageOptions& options) {
+  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+  using Tri = K::Triangle_3;
+  using Primitive = CGAL::AABB_triangle_primitive<K, std::vector<Tri>::const_iterator>;
+  using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
+
+  CoverageReport r;
+  r.tolerance = options.tolerance > 0 ? options.tolerance : 1e-5 * bounding_box(input).diagonal();
+  std::vector<Tri> triangles;
+  for (const Mesh* m : blocks)
+    for (const Triangle& t : m->faces) {
+      const Vec3& a = m->vertices[static_cast<std::size_t>(t[0])];
+      const Vec3& b = m->vertices[static_cast<std::size_t>(t[1])];
+      const Vec3& c = m->vertices[static_cast<std::size_t>(t[2])];
+      Tri tri(K::Point_3(a.x(), a.y(), a.z()), K::Point_3(b.x(), b.y(), b.z()), K::Point_3(c.x(), c.y(), c.z()));
+      if (!tri.is_degenerate()) triangles.push_back(tri);
+    }
+  // Samples: every vertex, then area-weighted random points (fixed seed).
+  std::vector<Vec3> samples(input.vertices.begin(), input.vertices.end());
+  std::vector<double> cumulative(input.num_faces());
+  double total = 0.0;
+  for (std::size_t f = 0; f < input.num_faces(); ++f) cumulative[f] = total += face_area(input, f);
+  std::mt19937_64 rng(options.seed);
+  auto uniform = [&rng]() { return static_cast<double>(rng() >> 11) * 0x1.0p-53; };
+  for (std::size_t s = 0; s < options.num_samples && total > 0; ++s) {
+    const double x = uniform() * total;
+    const std::size_t f = static_cast<std::size_t>(
+        std::min<std::ptrdiff_t>(std::upper_bound(cumulative.begin(), cumulative.end(), x) - cumulative.begin(),
+                                 static_cast<std::ptrdiff_t>(input.num_faces()) - 1));
+    double u = uniform(), v = uniform();
+    if (u + v > 1.0) {
+      u = 1.0 - u;
+      v = 1.0 - v;
+    }
+    const Triangle& t = input.faces[f];
+    const Vec3& a = input.vertices[static_cast<std::size_t>(t[0])];
+    const Vec3& b = input.vertices[static_cast<std::size_t>(t[1])];
+    const Vec3& c = input.vertices[static_cast<std::size_t>(t[2])];
+    samples.push_back(a + u * (b - a) + v * (c - a));
+  }
+  r.num_samples = samples.size();
+  if (triangles.empty()) {
+    r.num_uncovered = samples.size();
+    r.max_distance = std::numeric_limits<double>::infinity();
+    if (!samples.empty()) r.worst_point = samples.front();
+    return r;
+  }
+  Tree tree(triangles.begin(), triangles.end());
+  tree.accelerate_distance_queries();
+  for (const Vec3& p : samples) {
+    const double d = std::sqrt(tree.squared_distance(K::Point_3(p.x(), p.y(), p.z())));
+    if (d > r.tolerance) ++r.num_uncovered;
+    if (d > r.max_distance) {
+      r.max_distance = d;
+      r.worst_point = p;
+    }
+  }
+  return r;
+}
+
+}  // namespace subfab

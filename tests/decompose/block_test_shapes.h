@@ -1,0 +1,67 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! Small solids with known answers for the carve / merge / validate /
+//! export tests: boxes and extruded polygons (an L, a U), built by hand.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "subfab/decompose/height_box.h"
+#include "subfab/mesh/mesh.h"
+
+namespace subfab::test {
+
+//! Prism over a counter-clockwise polygon (in xy) from z0 to z1; `fan` is a
+//! triangulation of the polygon (counter-clockwise triangles of its corners).
+inline Mesh extrude_polygon(const std::vector<std::array<double, 2>>& polygon,
+                            const std::vector<Triangle>& fan, double z0, double z1) {
+  Mesh m;
+  const int n = static_cast<int>(polygon.size());
+  for (double z : {z0, z1})
+    for (const auto& p : polygon) m.vertices.emplace_back(p[0], p[1], z);
+  for (const Triangle& t : fan) {
+    m.faces.push_back({n + t[0], n + t[1], n + t[2]});  // top, seen from +z
+    m.faces.push_back({t[0], t[2], t[1]});              // bottom, reversed
+  }
+  for (int i = 0; i < n; ++i) {
+    const int j = (i + 1) % n;
+    m.faces.push_back({i, j, n + j});
+    m.faces.push_back({i, n + j, n + i});
+  }
+  return m;
+}
+
+//! Axis-aligned box solid [min, max].
+inline Mesh box_solid(const Vec3& min, const Vec3& max) {
+  Mesh m = extrude_polygon({{min.x(), min.y()}, {max.x(), min.y()}, {max.x(), max.y()}, {min.x(), max.y()}},
+                           {{0, 1, 2}, {0, 2, 3}}, min.z(), max.z());
+  return m;
+}
+
+//! L-shaped prism: the union of [0,2]x[0,1] and [0,1]x[0,2] in xy, z in [0,1]. Volume 3.
+inline Mesh l_solid() {
+  return extrude_polygon({{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}},
+                         {{3, 4, 5}, {3, 5, 0}, {3, 0, 1}, {3, 1, 2}}, 0.0, 1.0);
+}
+
+inline Box3 make_box(const Vec3& min, const Vec3& max) {
+  Box3 b;
+  b.min = min;
+  b.max = max;
+  return b;
+}
+
+inline HeightBox make_height_box(const Vec3& min, const Vec3& max, Axis axis) {
+  HeightBox h;
+  h.box = make_box(min, max);
+  h.axis = axis;
+  return h;
+}
+
+//! Translates a mesh.
+inline Mesh translated(Mesh m, const Vec3& t) {
+  for (Vec3& v : m.vertices) v += t;
+  return m;
+}
+
+}  // namespace subfab::test

@@ -1,0 +1,145 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "subfab/decompose/carve_blocks.h"
+
+#include <gtest/gtest.h>
+
+#include <map>
+
+#include "decompose/block_test_shapes.h"
+#include "subfab/core/parallel.h"
+
+namespace subfab {
+namespace {
+
+using test::box_solid;
+using test::l_solid;
+using test::make_height_box;
+
+double total_volume(const CarveResult& r) {
+  double v = 0;
+  for (const Block& b : r.blocks) v += signed_volume(b.mesh);
+  return v;
+}
+
+//! Every undirected edge is used exactly twice, once in each direction.
+bool is_closed_oriented(const Mesh& m) {
+  std::map<std::pair<int, int>, int> count;
+  for (const Triangle& t : m.faces)
+    for (int k = 0; k < 3; ++k) ++count[{t[static_cast<std::size_t>(k)], t[static_cast<std::size_t>((k + 1) % 3)]}];
+  for (const auto& [e, c] : count) {
+    if (c != 1) return false;
+    auto it = count.find({e.second, e.first});
+    if (it == count.end() || it->second != 1) return false;
+  }
+  return !m.faces.empty();
+}
+
+TEST(CarveBlocks, LShapeFromTwoOverlappingBoxes) {
+  const Mesh solid = l_solid();
+  const std::vector<HeightBox> boxes = {make_height_box({0, 0, 0}, {2, 1, 1}, Axis::PosZ),
+                                        make_height_box({0, 0, 0}, {1, 2, 1}, Axis::PosY)};
+  const CarveResult r = carve_blocks(solid, boxes);
+  ASSERT_EQ(r.blocks.size(), 2u);
+  EXPECT_NEAR(signed_volume(r.blocks[0].mesh), 2.0, 1e-12);
+  EXPECT_NEAR(signed_volume(r.blocks[1].mesh), 1.0, 1e-12);  // the first box took the overlap
+  EXPECT_EQ(r.blocks[0].axis, Axis::PosZ);
+  EXPECT_EQ(r.blocks[1].axis, Axis::PosY);
+  EXPECT_EQ(r.blocks[1].source_box, 1);
+  for (const Block& b : r.blocks) EXPECT_TRUE(is_closed_oriented(b.mesh));
+  const BoundingBox bb = bounding_box(r.blocks[1].mesh);
+  EXPECT_EQ(bb.min.y(), 1.0);  // exact cut on the first box's plane
+  EXPECT_EQ(r.num_flipped_faces + r.num_degenerate_faces, 0u);
+}
+
+TEST(CarveBlocks, OrderDecidesWhoTakesTheOverlap) {
+  const Mesh solid = l_solid();
+  const std::vector<HeightBox> boxes = {make_height_box({0, 0, 0}, {1, 2, 1}, Axis::PosY),
+                                        make_height_box({0, 0, 0}, {2, 1, 1}, Axis::PosZ)};
+  const CarveResult r = carve_blocks(solid, boxes);
+  ASSERT_EQ(r.blocks.size(), 2u);
+  EXPECT_NEAR(signed_volume(r.blocks[0].mesh), 2.0, 1e-12);
+  EXPECT_NEAR(signed_volume(r.blocks[1].mesh), 1.0, 1e-12);
+  EXPECT_EQ(bounding_box(r.blocks[1].mesh).min.x(), 1.0);
+}
+
+TEST(CarveBlocks, ClipsSlantedSurfaceExactly) {
+  // A wedge: unit square base, top rising from z = 1 at x = 0 to z = 2 at x = 1.
+  Mesh wedge = box_solid({0, 0, 0}, {1, 1, 1});
+  for (Vec3& v : wedge.vertices)
+    if (v.z() == 1.0 && v.x() == 1.0) v.z() = 2.0;
+  // Two boxes along +z: the halves x < 0.5 and x > 0.5 (overlapping a bit).
+  const std::vector<HeightBox> boxes = {make_height_box({-1, -1, -1}, {0.5, 2, 3}, Axis::PosZ),
+                                        make_height_box({0.25, -1, -1}, {2, 2, 3}, Axis::PosZ)};
+  const CarveResult r = carve_blocks(wedge, boxes);
+  ASSERT_EQ(r.blocks.size(), 2u);
+  // Volume of the wedge: 1.5; left half: 0.5 * 1.25 = 0.625.
+  EXPECT_NEAR(signed_volume(r.blocks[0].mesh), 0.625, 1e-12);
+  EXPECT_NEAR(total_volume(r), 1.5, 1e-12);
+  for (const Block& b : r.blocks) EXPECT_TRUE(is_closed_oriented(b.mesh));
+}
+
+TEST(CarveBlocks, DropsPiecesThatTouchNoSurface) {
+  const Mesh solid = box_solid({0, 0, 0}, {3, 3, 3});
+  const std::vector<HeightBox> boxes = {
+      make_height_box({0, 0, 0}, {3, 3, 1}, Axis::NegZ), make_height_box({0, 0, 2}, {3, 3, 3}, Axis::PosZ),
+      make_height_box({1, 1, 1}, {2, 2, 2}, Axis::PosX),  // strictly inside: an interior piece
+      make_height_box({0, 0, 0}, {3, 3, 3}, Axis::PosX)};  // the middle slab: touches the sides
+  const CarveResult r = carve_blocks(solid, boxes);
+  ASSERT_EQ(r.blocks.size(), 3u);
+  EXPECT_EQ(r.num_dropped_pieces, 1u);
+  EXPECT_EQ(r.blocks[2].source_box, 3);
+  // The slab minus the interior cube.
+  EXPECT_NEAR(signed_volume(r.blocks[2].mesh), 9.0 - 1.0, 1e-12);
+}
+
+TEST(CarveBlocks, KeepsBoxFlushWithTheSurface) {
+  // The box coincides with the solid: every face of the piece lies on a box plane.
+  const Mesh solid = box_solid({0, 0, 0}, {1, 1, 1});
+  const CarveResult r = carve_blocks(solid, {make_height_box({0, 0, 0}, {1, 1, 1}, Axis::PosZ)});
+  ASSERT_EQ(r.blocks.size(), 1u);
+  EXPECT_NEAR(signed_volume(r.blocks[0].mesh), 1.0, 1e-12);
+}
+
+TEST(CarveBlocks, NonManifoldRegionIsCutIntoPieces) {
+  // Region of the last box = two unit cubes touching along an edge.
+  const Mesh solid = box_solid({0, 0, 0}, {2, 2, 1});
+  const std::vector<HeightBox> boxes = {make_height_box({0, 0, 0}, {1, 1, 1}, Axis::PosZ),
+                                        make_height_box({1, 1, 0}, {2, 2, 1}, Axis::PosZ),
+                                        make_height_box({0, 0, 0}, {2, 2, 1}, Axis::PosZ)};
+  const CarveResult r = carve_blocks(solid, boxes);
+  ASSERT_EQ(r.blocks.size(), 4u);
+  EXPECT_NEAR(total_volume(r), 4.0, 1e-12);
+  for (const Block& b : r.blocks) {
+    EXPECT_TRUE(is_closed_oriented(b.mesh));
+    EXPECT_NEAR(signed_volume(b.mesh), 1.0, 1e-12);
+  }
+}
+
+TEST(CarveBlocks, SameResultWhateverTheThreadCount) {
+  Mesh wedge = box_solid({0, 0, 0}, {1, 1, 1});
+  for (Vec3& v : wedge.vertices)
+    if (v.z() == 1.0 && v.y() == 1.0) v.z() = 1.7;
+  std::vector<HeightBox> boxes;
+  for (int i = 0; i < 6; ++i)
+    boxes.push_back(make_height_box({0.15 * i - 0.1, -1, -1}, {0.15 * i + 0.3, 2, 3}, Axis::PosZ));
+  CarveResult one, many;
+  {
+    ThreadLimit limit(1);
+    one = carve_blocks(wedge, boxes);
+  }
+  many = carve_blocks(wedge, boxes);
+  // Twice in parallel, after unrelated heap traffic.
+  std::vector<std::vector<int>> noise;
+  for (int i = 0; i < 1000; ++i) noise.emplace_back(static_cast<std::size_t>(i % 37 + 1), i);
+  const CarveResult again = carve_blocks(wedge, boxes);
+  ASSERT_EQ(again.blocks.size(), many.blocks.size());
+  for (std::size_t i = 0; i < again.blocks.size(); ++i) EXPECT_EQ(again.blocks[i].mesh.faces, many.blocks[i].mesh.faces);
+  ASSERT_EQ(one.blocks.size(), many.blocks.size());
+  for (std::size_t i = 0; i < one.blocks.size(); ++i) {
+    EXPECT_EQ(one.blocks[i].mesh.vertices, many.blocks[i].mesh.vertices);
+    EXPECT_EQ(one.blocks[i].mesh.faces, many.blocks[i].mesh.faces);
+  }
+}
+
+}  // namespace
+}  // namespace subfab

@@ -1,0 +1,106 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// End to end: decompose() on small real models and synthetic solids, then
+// every check of validate_decomposition() on the exported files.
+#include "subfab/decompose/decompose.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "decompose/block_test_shapes.h"
+#include "subfab/core/error.h"
+#include "subfab/core/parallel.h"
+#include "subfab/decompose/export_decomposition.h"
+#include "subfab/decompose/validate_decomposition.h"
+#include "subfab/mesh/read_mesh.h"
+#include "test_support.h"
+
+namespace subfab {
+namespace {
+
+std::vector<ValidationBlock> to_validation(const Mesh& input, const DecomposeResult& r) {
+  std::vector<ValidationBlock> out;
+  for (ExportedBlock& e : make_exported_blocks(input, r)) {
+    ValidationBlock b;
+    b.mesh = std::move(e.mesh);
+    b.direction = e.direction;
+    b.machine_mesh = std::move(e.machine_mesh);
+    b.machine_transform = e.machine_transform;
+    out.push_back(std::move(b));
+  }
+  return out;
+}
+
+void expect_valid(const Mesh& input, const DecomposeResult& r, double max_height) {
+  ValidationOptions o;
+  o.limits.max_height = max_height;
+  const ValidationReport report = validate_decomposition(input, to_validation(input, r), o);
+  for (const CheckReport& c : report.checks)
+    EXPECT_TRUE(c.passed) << c.name << ": " << (c.failures.empty() ? c.summary : c.failures[0]);
+}
+
+TEST(Decompose, CubeIsOneBlock) {
+  const Mesh cube = test::box_solid({0, 0, 0}, {1, 1, 1});
+  DecomposeOptions o;
+  const DecomposeResult r = decompose(cube, o);
+  ASSERT_EQ(r.blocks.size(), 1u);
+  EXPECT_NEAR(signed_volume(r.blocks[0].mesh), 1.0, 1e-12);
+  expect_valid(cube, r, r.max_height);
+}
+
+TEST(Decompose, LShapeIsValid) {
+  const Mesh l = test::l_solid();
+  DecomposeOptions o;
+  o.orient = false;
+  const DecomposeResult r = decompose(l, o);
+  EXPECT_GE(r.blocks.size(), 1u);
+  EXPECT_LE(r.blocks.size(), 2u);
+  expect_valid(l, r, r.max_height);
+}
+
+class DecomposeRealModel : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(DecomposeRealModel, ValidatesAndIsThreadIndependent) {
+  const Mesh input = read_mesh(test::data_path(GetParam()));
+  DecomposeOptions o;
+  DecomposeResult many = decompose(input, o);
+  EXPECT_GE(many.blocks.size(), 1u);
+  expect_valid(input, many, many.max_height);
+  DecomposeResult one;
+  {
+    ThreadLimit limit(1);
+    one = decompose(input, o);
+  }
+  ASSERT_EQ(one.blocks.size(), many.blocks.size());
+  for (std::size_t i = 0; i < one.blocks.size(); ++i) {
+    EXPECT_EQ(one.blocks[i].mesh.vertices, many.blocks[i].mesh.vertices) << "block " << i;
+    EXPECT_EQ(one.blocks[i].mesh.faces, many.blocks[i].mesh.faces) << "block " << i;
+    EXPECT_EQ(one.blocks[i].axis, many.blocks[i].axis);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(SmallModels, DecomposeRealModel,
+                         ::testing::Values("cross.off", "joint.off"));
+
+TEST(Decompose, HeightLimitIsRespected) {
+  const Mesh input = read_mesh(test::data_path("cross.off"));
+  DecomposeOptions o;
+  o.max_height_fraction = 0.2;
+  const DecomposeResult r = decompose(input, o);
+  EXPECT_NEAR(r.max_height, 0.2 * bounding_box(input).diagonal(), 1e-12);
+  expect_valid(input, r, r.max_height);
+}
+
+TEST(Decompose, RejectsBadOptions) {
+  const Mesh cube = test::box_solid({0, 0, 0}, {1, 1, 1});
+  DecomposeOptions o;
+  o.grid_factor = 0;
+  EXPECT_THROW(decompose(cube, o), InvalidArgumentError);
+  o = {};
+  o.max_height_fraction = -1;
+  EXPECT_THROW(decompose(cube, o), InvalidArgumentError);
+}
+
+}  // namespace
+}  // namespace subfab

@@ -1,0 +1,161 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "subfab/decompose/validate_decomposition.h"
+
+#include <gtest/gtest.h>
+
+#include "decompose/block_test_shapes.h"
+
+namespace subfab {
+namespace {
+
+using test::box_solid;
+using test::l_solid;
+
+//! A block with its machine mesh: direction d = +z, or any axis direction
+//! given with the matching rotation.
+ValidationBlock make_block(const Mesh& mesh, const Vec3& direction, const Eigen::Matrix3d& to_machine) {
+  ValidationBlock b;
+  b.mesh = mesh;
+  b.direction = direction;
+  Mesh m = mesh;
+  BoundingBox bb;
+  for (Vec3& v : m.vertices) {
+    v = to_machine * v;
+    bb.extend(v);
+  }
+  for (Vec3& v : m.vertices) v -= bb.min;
+  b.machine_mesh = m;
+  b.machine_transform.setIdentity();
+  b.machine_transform.topLeftCorner<3, 3>() = to_machine;
+  b.machine_transform.topRightCorner<3, 1>() = -bb.min;
+  return b;
+}
+
+ValidationBlock up_block(const Mesh& mesh) { return make_block(mesh, Vec3::UnitZ(), Eigen::Matrix3d::Identity()); }
+
+ValidationOptions fast_options() {
+  ValidationOptions o;
+  o.num_coverage_samples = 20000;
+  return o;
+}
+
+const CheckReport& check(const ValidationReport& r, int number) { return r.checks.at(static_cast<std::size_t>(number - 1)); }
+
+TEST(ValidateDecomposition, CorrectLDecompositionPasses) {
+  const Mesh input = l_solid();
+  const std::vector<ValidationBlock> blocks = {up_block(box_solid({0, 0, 0}, {2, 1, 1})),
+                                               up_block(box_solid({0, 1, 0}, {1, 2, 1}))};
+  const ValidationReport r = validate_decomposition(input, blocks, fast_options());
+  ASSERT_EQ(r.checks.size(), 7u);
+  for (const CheckReport& c : r.checks) EXPECT_TRUE(c.passed) << c.name << ": " << (c.failures.empty() ? "" : c.failures[0]);
+  EXPECT_TRUE(r.passed());
+}
+
+TEST(ValidateDecomposition, OverlapFails) {
+  const Mesh input = l_solid();
+  const std::vector<ValidationBlock> blocks = {up_block(box_solid({0, 0, 0}, {2, 1, 1})),
+                                               up_block(box_solid({0, 0.5, 0}, {1, 2, 1}))};
+  const ValidationReport r = validate_decomposition(input, blocks, fast_options());
+  EXPECT_FALSE(check(r, 3).passed);
+  EXPECT_TRUE(check(r, 1).passed);
+  EXPECT_TRUE(check(r, 5).passed);
+  EXPECT_FALSE(r.passed());
+}
+
+TEST(ValidateDecomposition, OverhangFails) {
+  // The whole L as one block milled from -x: its inner face at x = 1 faces +x, off the base at x = 2.
+  Eigen::Matrix3d to_machine;
+  to_machine << 0, 0, 1, 0, 1, 0, -1, 0, 0;  // -x -> +z, determinant +1
+  const std::vector<ValidationBlock> blocks = {make_block(l_solid(), -Vec3::UnitX(), to_machine)};
+  const ValidationReport r = validate_decomposition(l_solid(), blocks, fast_options());
+  EXPECT_FALSE(check(r, 2).passed);
+  EXPECT_TRUE(check(r, 3).passed);
+  EXPECT_TRUE(check(r, 4).passed);
+  EXPECT_TRUE(check(r, 5).passed);
+  EXPECT_TRUE(check(r, 7).passed) << (check(r, 7).failures.empty() ? "" : check(r, 7).failures[0]);
+  // The same L milled from +x is a height field.
+  EXPECT_TRUE(is_height_field(l_solid(), Vec3::UnitX()));
+  EXPECT_FALSE(is_height_field(l_solid(), -Vec3::UnitX()));
+}
+
+TEST(ValidateDecomposition, GapFails) {
+  const std::vector<ValidationBlock> blocks = {up_block(box_solid({0, 0, 0}, {2, 1, 1}))};
+  const ValidationReport r = validate_decomposition(l_solid(), blocks, fast_options());
+  EXPECT_FALSE(check(r, 5).passed);
+  EXPECT_TRUE(check(r, 4).passed);
+}
+
+TEST(ValidateDecomposition, BlockOutsideTheInputFails) {
+  const std::vector<ValidationBlock> blocks = {up_block(box_solid({0, 0, 0}, {2, 1, 1})),
+                                               up_block(box_solid({0, 1, 0}, {1, 2.5, 1}))};
+  const ValidationReport r = validate_decomposition(l_solid(), blocks, fast_options());
+  EXPECT_FALSE(check(r, 4).passed);
+  EXPECT_TRUE(check(r, 3).passed);
+}
+
+TEST(ValidateDecomposition, HeightLimitAndMachineMeshAreChecked) {
+  std::vector<ValidationBlock> blocks = {up_block(box_solid({0, 0, 0}, {2, 1, 1})),
+                                         up_block(box_solid({0, 1, 0}, {1, 2, 1}))};
+  ValidationOptions o = fast_options();
+  o.limits.max_height = 0.5;
+  EXPECT_FALSE(check(validate_decomposition(l_solid(), blocks, o), 6).passed);
+  o.limits.max_height = 1.0;
+  o.limits.machine = Vec3(1.0, 2.0, 1.0);  // the 2 x 1 footprint fits turned by 90 degrees
+  EXPECT_TRUE(check(validate_decomposition(l_solid(), blocks, o), 6).passed);
+  o.limits.machine = Vec3(1.0, 1.5, 1.0);
+  EXPECT_FALSE(check(validate_decomposition(l_solid(), blocks, o), 6).passed);
+  // A machine mesh that is not the block moved rigidly.
+  blocks[1].machine_mesh->vertices[0].x() += 0.25;
+  EXPECT_FALSE(check(validate_decomposition(l_solid(), blocks, fast_options()), 7).passed);
+}
+
+TEST(ValidateDecomposition, ClosedSolidCheck) {
+  Mesh open = box_solid({0, 0, 0}, {1, 1, 1});
+  EXPECT_TRUE(check_closed_solid(open).ok());
+  EXPECT_NEAR(check_closed_solid(open).volume, 1.0, 1e-15);
+  open.faces.pop_back();
+  const SolidReport r = check_closed_solid(open);
+  EXPECT_FALSE(r.ok());
+  EXPECT_EQ(r.num_boundary_edges, 3u);
+  Mesh inverted = box_solid({0, 0, 0}, {1, 1, 1});
+  for (Triangle& t : inverted.faces) std::swap(t[1], t[2]);
+  EXPECT_FALSE(check_closed_solid(inverted).ok());  // negative volume
+  // Two cubes sharing one corner vertex: a pinched (non-manifold) vertex.
+  Mesh a = box_solid({0, 0, 0}, {1, 1, 1});
+  const Mesh b = box_solid({1, 1, 1}, {2, 2, 2});
+  const int offset = static_cast<int>(a.vertices.size());
+  for (const Vec3& v : b.vertices) a.vertices.push_back(v);
+  for (Triangle t : b.faces) {
+    for (int& i : t) {
+      i += offset;
+      if (a.vertices[static_cast<std::size_t>(i)] == Vec3(1, 1, 1)) i = 6;  // the shared corner
+    }
+    a.faces.push_back(t);
+  }
+  ASSERT_EQ(a.vertices[6], Vec3(1, 1, 1));
+  EXPECT_EQ(check_closed_solid(a).num_non_manifold_vertices, 1u);
+}
+
+TEST(ValidateDecomposition, OverlapAndOutsideVolumesAreExact) {
+  const Mesh a = box_solid({0, 0, 0}, {2, 2, 2});
+  const Mesh b = box_solid({1, 1, 1}, {3, 3, 3});
+  EXPECT_NEAR(blocks_overlap(a, b), 1.0, 1e-12);
+  EXPECT_NEAR(blocks_overlap(a, box_solid({2, 0, 0}, {3, 2, 2})), 0.0, 1e-12);  // touching faces
+  EXPECT_NEAR(blocks_overlap(a, box_solid({2, 2, 0}, {3, 3, 2})), 0.0, 1e-12);  // touching along an edge
+  EXPECT_NEAR(volume_outside(b, a), 7.0, 1e-12);
+  EXPECT_NEAR(volume_outside(box_solid({0, 0, 0}, {1, 1, 2}), a), 0.0, 1e-12);  // flush with faces
+}
+
+TEST(ValidateDecomposition, CoverageFindsTheUncoveredPart) {
+  const Mesh input = box_solid({0, 0, 0}, {2, 1, 1});
+  const Mesh half = box_solid({0, 0, 0}, {1, 1, 1});
+  const CoverageReport r = surface_coverage(input, {&half});
+  EXPECT_GT(r.num_uncovered, 1000u);
+  EXPECT_NEAR(r.max_distance, 1.0, 0.05);
+  EXPECT_GE(r.num_samples, 20000u);
+  const Mesh other = box_solid({1, 0, 0}, {2, 1, 1});
+  EXPECT_TRUE(surface_coverage(input, {&half, &other}).ok());
+}
+
+}  // namespace
+}  // namespace subfab
