@@ -384,6 +384,28 @@ std::vector<int> SolidIndex::faces_meeting_open_box(const Box3& box) const {
   return result;
 }
 
+bool SolidIndex::any_face_meets_open_box(const Box3& box) const {
+  for (int k = 0; k < 3; ++k)
+    if (!(box.max[k] > box.min[k])) return false;
+  const Impl& m = *impl_;
+  return !m.all_bvh.query([&](const Box3& node) { return overlaps_open(node, box); },
+                          [&](int f) { return !(overlaps_open(m.boxes[static_cast<std::size_t>(f)], box) && m.meets(f, box)); });
+}
+
+std::vector<int> SolidIndex::faces_near_closed_box(const Box3& box) const {
+  std::vector<int> result;
+  const Impl& m = *impl_;
+  auto touches = [&](const Box3& b) {
+    return (b.max.array() >= box.min.array()).all() && (b.min.array() <= box.max.array()).all();
+  };
+  m.all_bvh.query(touches, [&](int f) {
+    if (touches(m.boxes[static_cast<std::size_t>(f)])) result.push_back(f);
+    return true;
+  });
+  std::sort(result.begin(), result.end());
+  return result;
+}
+
 bool SolidIndex::face_covered(int face, const Box3& box, Axis axis) const {
   const Impl& m = *impl_;
   const Box3& fb = m.boxes[static_cast<std::size_t>(face)];

@@ -93,6 +93,15 @@ class SolidIndex {
   //! All faces (any orientation) that meet the open box, sorted by id.
   std::vector<int> faces_meeting_open_box(const Box3& box) const;
 
+  //! Exact: does any face (any orientation) meet the open box? Early-exit
+  //! query; with is_inside(box.min) it decides whether the solid's interior
+  //! meets the open box (for resolve/carve).
+  bool any_face_meets_open_box(const Box3& box) const;
+
+  //! Faces whose bounding box meets the CLOSED box (candidates for exact
+  //! closed-box tests), sorted by id.
+  std::vector<int> faces_near_closed_box(const Box3& box) const;
+
   //! Faces covered by the box for `axis` (see the file comment), sorted by id.
   std::vector<int> faces_covered(const Box3& box, Axis axis) const;
   std::vector<int> faces_covered(const HeightBox& box) const { return faces_covered(box.box, box.axis); }

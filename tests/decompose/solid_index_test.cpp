@@ -318,6 +318,33 @@ TEST(SolidIndex, PushFaceMatchesBruteForceOnRealData) {
   EXPECT_GT(moved, 50);
 }
 
+TEST(SolidIndex, AnyFaceAndNearFaceQueriesMatchLinearScans) {
+  const Mesh mesh = read_data("fandisk.obj");
+  const SolidIndex index(mesh);
+  const BoundingBox bb = bounding_box(mesh);
+  std::mt19937 rng(21);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int hits = 0;
+  for (int iter = 0; iter < 100; ++iter) {
+    const Vec3 p = bb.min + Vec3(u(rng), u(rng), u(rng)).cwiseProduct(bb.max - bb.min);
+    const Vec3 q = p + 0.15 * Vec3(u(rng), u(rng), u(rng)).cwiseProduct(bb.max - bb.min);
+    const Box3 box{p, q};
+    bool any = false;
+    std::vector<int> near;
+    for (int f = 0; f < index.num_faces(); ++f) {
+      any = any || index.face_meets_open_box(f, box);
+      const Box3& fb = index.face_box(f);
+      if ((fb.max.array() >= box.min.array()).all() && (fb.min.array() <= box.max.array()).all()) near.push_back(f);
+    }
+    EXPECT_EQ(index.any_face_meets_open_box(box), any);
+    EXPECT_EQ(index.faces_near_closed_box(box), near);
+    EXPECT_EQ(index.faces_meeting_open_box(box).empty(), !any);
+    hits += any;
+  }
+  EXPECT_GT(hits, 10);
+  EXPECT_LT(hits, 95);
+}
+
 TEST(SolidIndex, IsInsideOnCubeIncludingBoundaryPoints) {
   const Mesh cube = test::make_box_mesh(Vec3(0, 0, 0), Vec3(1, 1, 1));
   const SolidIndex index(cube);
