@@ -193,8 +193,8 @@ class HoleCloser {
     const Vec3 u1 = flat(mesh_.approx[cycle_[(j + 1) % m]] - x).normalized();
     const Vec3 u2 = flat(mesh_.approx[cycle_[(j + m - 1) % m]] - x).normalized();
     auto ccw_angle = [&](const Vec3& from, const Vec3& to) {
-      double a = std::atan2(nr.dot(from.cross(to)), from.dot(to));
-      return a < 0 ? a + 2 * 3.14159265358979323846 : a;
+      const double angle = std::atan2(nr.dot(from.cross(to)), from.dot(to));
+      return angle < 0 ? angle + 2 * 3.14159265358979323846 : angle;
     };
     const double sector = ccw_angle(u1, u2);
     const Vec3 dv = flat(Vec3(CGAL::to_double(d.x), CGAL::to_double(d.y), CGAL::to_double(d.z))).normalized();

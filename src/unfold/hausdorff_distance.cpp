@@ -39,7 +39,8 @@ double one_sided(const Mesh& from, const Mesh& to, std::size_t samples) {
     const auto& f = from.faces[t];
     const Vec3 &a = from.vertices[f[0]], &b = from.vertices[f[1]], &c = from.vertices[f[2]];
     const double tri_area = 0.5 * (b - a).cross(c - a).norm();
-    const int n = std::clamp(static_cast<int>(std::ceil(std::sqrt(tri_area / cell))), 1, 64);
+    const double steps = std::ceil(std::sqrt(tri_area / cell));
+    const int n = !(steps > 1) ? 1 : (steps >= 64 ? 64 : static_cast<int>(steps));
     double w = 0;
     for (int i = 0; i <= n; ++i)
       for (int j = 0; i + j <= n; ++j) {

@@ -47,6 +47,7 @@ SimplifyUnfoldableResult simplify_unfoldable(const Mesh& mesh, const SimplifyUnf
   const double s = result.spacing;
   result.min_facet_area = options.min_facet_area < 0 ? 2.0 * s * s : options.min_facet_area;
   DeleteFacetsResult deleted = delete_facets(poly, {.min_facet_area = result.min_facet_area,
+                                                    .facet_ids = {},
                                                     .grid_origin = result.origin,
                                                     .grid_step = s,
                                                     .max_extension = 1.5 * s,
@@ -56,7 +57,8 @@ SimplifyUnfoldableResult simplify_unfoldable(const Mesh& mesh, const SimplifyUnf
                                                     .progress = progress});
   result.failures = deleted.failures;
   if (!options.delete_facet_ids.empty()) {
-    DeleteFacetsResult chosen = delete_facets(deleted.mesh, {.facet_ids = options.delete_facet_ids,
+    DeleteFacetsResult chosen = delete_facets(deleted.mesh, {.min_facet_area = 0,
+                                                             .facet_ids = options.delete_facet_ids,
                                                              .grid_origin = result.origin,
                                                              .grid_step = s,
                                                              .progress = progress});
