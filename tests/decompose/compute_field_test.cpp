@@ -15,20 +15,14 @@
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
 #include "subfab/mesh/read_mesh.h"
+#include "decompose/box_shapes.h"
 #include "test_support.h"
 
 namespace subfab {
 namespace {
 
 //! Closed, outward-oriented axis-aligned box [lo, hi] (12 triangles).
-Mesh box_mesh(const Vec3& lo, const Vec3& hi) {
-  Mesh m;
-  for (int k = 0; k < 8; ++k)
-    m.vertices.emplace_back((k & 1) ? hi.x() : lo.x(), (k & 2) ? hi.y() : lo.y(), (k & 4) ? hi.z() : lo.z());
-  m.faces = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
-             {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
-  return m;
-}
+Mesh box_mesh(const Vec3& lo, const Vec3& hi) { return test::make_box_mesh(lo, hi); }
 
 //! A grid with the given origin, spacing and size.
 GridGeometry hand_grid(const Vec3& origin, double spacing, std::array<int, 3> n) {
