@@ -12,6 +12,7 @@
 #include "decompose/classify_grid_points.h"
 #include "decompose/exact_normal_signs.h"
 #include "decompose/mark_triangle_cells.h"
+#include "decompose/triangle_meets_closed_box.h"
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
 #include "subfab/mesh/read_mesh.h"
@@ -173,6 +174,40 @@ TEST(ComputeFields, RealModelTrianglesMarkTheCellAroundThem) {
     }
   }
   EXPECT_GT(num_away, mesh.num_faces());
+}
+
+// The guarantee box growth can rely on: a box spanning grid points [lo, hi]
+// with no Forbidden point meets no triangle facing away from the direction,
+// not even on its boundary (checked against every triangle, exactly).
+TEST(ComputeFields, NoForbiddenPointMeansNoFacingAwayTriangleInTheBox) {
+  const Mesh mesh = read_mesh(test::data_path("bunny_lowres.off"));
+  const auto fields = compute_fields(mesh, {.grid_factor = 2.0});
+  const GridGeometry& g = fields[0].grid;
+  std::mt19937 rng(7);
+  int num_clear = 0;
+  for (int trial = 0; trial < 3000 && num_clear < 60; ++trial) {
+    const Axis axis = kAllAxes[static_cast<std::size_t>(trial % 6)];
+    const HeightField& field = fields[static_cast<std::size_t>(axis_index(axis))];
+    std::array<int, 3> lo{}, hi{};
+    for (std::size_t c = 0; c < 3; ++c) {
+      std::uniform_int_distribution<int> start(0, g.num_points[c] - 2), length(1, 6);
+      lo[c] = start(rng);
+      hi[c] = std::min(lo[c] + length(rng), g.num_points[c] - 1);
+    }
+    if (field.count_forbidden(lo, hi) != 0 || field.count_good(lo, hi) == 0) continue;
+    ++num_clear;
+    const Box3 box{g.point(lo[0], lo[1], lo[2]), g.point(hi[0], hi[1], hi[2])};
+    const int d = axis_dimension(axis);
+    for (std::size_t f = 0; f < mesh.num_faces(); ++f) {
+      const auto& t = mesh.faces[f];
+      const Vec3& a = mesh.vertices[static_cast<std::size_t>(t[0])];
+      const Vec3& b = mesh.vertices[static_cast<std::size_t>(t[1])];
+      const Vec3& c = mesh.vertices[static_cast<std::size_t>(t[2])];
+      if (detail::exact_normal_signs(a, b, c)[static_cast<std::size_t>(d)] * axis_sign(axis) >= 0) continue;
+      ASSERT_FALSE(detail::triangle_meets_closed_box(a, b, c, box)) << "face " << f << " " << axis_name(axis);
+    }
+  }
+  EXPECT_GE(num_clear, 60);
 }
 
 TEST(MarkTriangleCells, DegenerateTriangleMarksTheCellsOfItsSegment) {

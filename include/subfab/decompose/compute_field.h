@@ -29,6 +29,10 @@
 //!   direction.
 //! - Cells are closed: a triangle touching a cell only on its boundary still
 //!   marks the cell's corners.
+//! - Hence: a box spanning grid points lo..hi with count_forbidden(lo, hi) == 0
+//!   meets no triangle facing away from the direction, not even on its
+//!   boundary (such a triangle meets a closed cell that shares at least a
+//!   corner with the box, and all 8 corners of that cell are Forbidden).
 //! - Inside/outside of a grid point p is that of p + (e, e^2, e^3) for an
 //!   infinitesimal e > 0 (simulation of simplicity): a point exactly on the
 //!   surface is classified consistently, as the point infinitesimally beside it.
