@@ -1,12 +1,14 @@
 # subfab: the two commands of the README, and what they need.
-#   make run   set up, build (Release), run the main job on a bundled example
+#   make run   set up, build (Release), decompose a bundled example (data/moai.obj,
+#              thesis height 0.225) into out/example and validate the result
 #   make test  set up, build, run the whole test suite (ctest), then the mesh
 #              reader tests again under AddressSanitizer + UBSan
 SHELL := /bin/bash
 BUILD_DIR ?= build
 ASAN_DIR ?= build-asan
 JOBS ?= $(shell nproc)
-EXAMPLE ?= data/fandisk.obj
+EXAMPLE ?= data/moai.obj
+EXAMPLE_HEIGHT ?= 0.225
 OUT ?= out/example
 
 .PHONY: all setup configure build run test test-fast test-asan bench clean
@@ -23,7 +25,8 @@ build: configure
 	@cmake --build $(BUILD_DIR) -j $(JOBS)
 
 run: build
-	@./$(BUILD_DIR)/subfab info $(EXAMPLE)
+	@./$(BUILD_DIR)/subfab decompose $(EXAMPLE) -o $(OUT) --max-height $(EXAMPLE_HEIGHT)
+	@./$(BUILD_DIR)/subfab validate $(EXAMPLE) $(OUT) --quiet
 
 test-fast: build
 	@ctest --test-dir $(BUILD_DIR) --output-on-failure -j $(JOBS)

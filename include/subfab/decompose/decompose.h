@@ -3,7 +3,7 @@
 //! The whole height-field block decomposition of thesis Chapter 4:
 //!
 //!   orient (4.3.1) -> fields (4.3.2) -> grow boxes (4.3.2, App. B)
-//!   -> minimal cover (4.3.2, CBC) -> resolve overlaps (4.3.3: conflict
+//!   -> minimal cover (4.3.2, CBC) -> snap and shrink (4.3.4) -> resolve overlaps (4.3.3: conflict
 //!   graph, cycle splits, carve order) -> carve (exact booleans)
 //!   -> merge (4.3.4 post-processing)
 //!

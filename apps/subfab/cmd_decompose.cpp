@@ -1,0 +1,149 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! `subfab decompose MESH -o OUTDIR [options]`: height-field block
+//! decomposition (thesis Chapter 4), written as OUTDIR/decomposition.json,
+//! OUTDIR/blocks/block_NNN.obj (input frame) and OUTDIR/mill/block_NNN.stl
+//! (ready to mill: direction +Z, base on z = 0).
+#include <cmath>
+#include <iostream>
+#include <limits>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "command.h"
+#include "subfab/checks/require_closed_solid.h"
+#include "subfab/core/error.h"
+#include "subfab/core/parallel.h"
+#include "subfab/decompose/decompose.h"
+#include "subfab/decompose/export_decomposition.h"
+#include "subfab/mesh/read_mesh.h"
+
+namespace subfab::cli {
+namespace {
+
+struct DecomposeArgs {
+  std::string mesh;
+  std::string outdir;
+  double max_height = std::numeric_limits<double>::infinity();
+  double max_height_abs = std::numeric_limits<double>::infinity();
+  std::string machine;
+  bool no_orient = false;
+  double grid_factor = 1.0;
+  CommonOptions common;
+};
+
+Vec3 parse_machine(const std::string& text) {
+  const auto fail = [&text]() {
+    return InvalidArgumentError("--machine expects X,Y,Z: three positive numbers in model units, got '" + text + "'");
+  };
+  std::vector<std::string> parts;
+  std::stringstream in(text);
+  std::string part;
+  while (std::getline(in, part, ',')) parts.push_back(part);
+  if (parts.size() != 3) throw fail();
+  Vec3 v;
+  for (int k = 0; k < 3; ++k) {
+    std::size_t used = 0;
+    try {
+      v[k] = std::stod(parts[static_cast<std::size_t>(k)], &used);
+    } catch (const std::exception&) {
+      throw fail();
+    }
+    if (used != parts[static_cast<std::size_t>(k)].size() || !(v[k] > 0) || !std::isfinite(v[k])) throw fail();
+  }
+  return v;
+}
+
+int run_decompose(const DecomposeArgs& args) {
+  ThreadLimit threads(static_cast<std::size_t>(args.common.threads));
+  DecomposeOptions options;
+  options.max_height_fraction = args.max_height;
+  options.max_height_abs = args.max_height_abs;
+  if (!args.machine.empty()) options.machine = parse_machine(args.machine);
+  options.orient = !args.no_orient;
+  options.grid_factor = args.grid_factor;
+
+  ConsoleProgress progress(std::cerr, args.common.quiet, stderr_is_terminal());
+  options.progress = &progress;
+  Mesh mesh;
+  {
+    StageScope stage(&progress, "read");
+    mesh = read_mesh(args.mesh);          // IoError / InvalidMeshError: exit 2
+    require_closed_solid(mesh, &progress);  // InvalidMeshError: exit 2, with the reason
+  }
+  const DecomposeResult result = decompose(mesh, options);
+  {
+    StageScope stage(&progress, "export");
+    ExportInfo info;
+    info.input_path = args.mesh;
+    info.options = options;
+    export_decomposition(mesh, result, info, args.outdir);
+  }
+  if (!args.common.quiet) progress.print_timings(std::cerr);
+
+  const std::vector<ExportedBlock> blocks = make_exported_blocks(mesh, result);
+  double total = 0, smallest = std::numeric_limits<double>::infinity();
+  for (const auto& b : blocks) {
+    total += b.volume;
+    smallest = std::min(smallest, b.volume);
+  }
+  const double input_volume = signed_volume(mesh);
+  if (args.common.json) {
+    const DecomposeTimings& t = result.timings;
+    nlohmann::ordered_json j;
+    j["input"] = args.mesh;
+    j["output"] = args.outdir;
+    j["num_blocks"] = blocks.size();
+    j["num_grown_boxes"] = result.num_grown_boxes;
+    j["num_selected_boxes"] = result.num_selected_boxes;
+    j["num_ordered_boxes"] = result.num_ordered_boxes;
+    j["num_cycle_splits"] = result.num_cycle_splits;
+    j["num_merges"] = result.num_merges;
+    j["num_refined_faces"] = result.num_refined_faces;
+    j["cover_optimal"] = result.cover_optimal;
+    j["material_volume_fraction"] = input_volume > 0 ? total / input_volume : 0.0;
+    j["min_block_volume_fraction"] = blocks.empty() || input_volume <= 0 ? 0.0 : smallest / input_volume;
+    j["timings_s"] = {{"orient", t.orient}, {"field", t.field},     {"grow", t.grow},   {"cover", t.cover},
+                      {"resolve", t.resolve}, {"carve", t.carve}, {"total", t.total}};
+    std::cout << j.dump(2) << "\n";
+  } else if (!args.common.quiet) {
+    std::cout << blocks.size() << " blocks written to " << args.outdir << " (" << result.num_selected_boxes
+              << " boxes chosen from " << result.num_grown_boxes << ", " << result.num_cycle_splits
+              << " cycle splits, " << result.num_merges << " merges); check them with: subfab validate "
+              << args.mesh << " " << args.outdir << "\n";
+  }
+  return kExitOk;
+}
+
+const RegisterCommand kRegisterDecompose({"decompose", 20, [](CLI::App& app) {
+  auto args = std::make_shared<DecomposeArgs>();
+  CLI::App* sub = app.add_subcommand(
+      "decompose",
+      "Split a closed mesh into non-overlapping height-field blocks, each millable in one pass of a "
+      "3-axis machine (thesis Chapter 4). Writes OUTDIR/decomposition.json, OUTDIR/blocks/block_NNN.obj "
+      "(input coordinates) and OUTDIR/mill/block_NNN.stl (milling direction +Z, base on z = 0). "
+      "Exit 2 if the mesh is not a closed, manifold, consistently oriented solid.");
+  sub->add_option("MESH", args->mesh, "Input mesh (.obj .off .ply .stl), a closed solid")->required();
+  sub->add_option("-o,--output", args->outdir, "Output folder (created if needed)")->required();
+  sub->add_option("--max-height", args->max_height,
+                  "Maximum block height along its milling direction, as a fraction of the bounding-box "
+                  "diagonal (the 'Height' column of thesis Table 4.1; default: no limit)")
+      ->check(CLI::PositiveNumber);
+  sub->add_option("--max-height-abs", args->max_height_abs,
+                  "Maximum block height in model units (default: no limit; with --max-height the smaller wins)")
+      ->check(CLI::PositiveNumber);
+  sub->add_option("--machine", args->machine,
+                  "Machine work volume X,Y,Z in model units: every block must fit, Z along its milling "
+                  "direction (default: no limit)");
+  sub->add_flag("--no-orient", args->no_orient, "Keep the input frame (skip the orientation search of thesis 4.3.1)");
+  sub->add_option("--grid-factor", args->grid_factor,
+                  "Grid spacing = average edge length x G (default 1; smaller is finer and slower)")
+      ->check(CLI::PositiveNumber);
+  add_common_options(*sub, args->common);
+  return std::pair<CLI::App*, std::function<int()>>{sub, [args] { return run_decompose(*args); }};
+}});
+
+}  // namespace
+}  // namespace subfab::cli

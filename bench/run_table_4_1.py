@@ -1,0 +1,96 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Thesis Table 4.1 benchmark: decomposes every model of
+../shared/benchmarks/paper_table_4_1.csv that ships in ../shared/models with
+that row's height setting, validates each result with `subfab validate`, and
+prints: model, blocks (ours / thesis), time per stage, total, thesis total,
+speed ratio, peak memory (from /usr/bin/time -v).
+
+Usage: bench/run_table_4_1.py [--subfab build/subfab] [--models DIR] [--csv FILE]
+                              [--out DIR] [--threads N] [--only NAME ...]
+Long (minutes): never run from the test suite.
+"""
+import argparse
+import csv
+import json
+import math
+import os
+import re
+import subprocess
+import sys
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+
+
+def peak_rss_mb(stderr_text):
+    m = re.search(r"Maximum resident set size \(kbytes\): (\d+)", stderr_text)
+    return int(m.group(1)) / 1024.0 if m else float("nan")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--subfab", default=os.path.join(ROOT, "build", "subfab"))
+    ap.add_argument("--models", default=os.path.join(ROOT, "..", "shared", "models"))
+    ap.add_argument("--csv", default=os.path.join(ROOT, "..", "shared", "benchmarks", "paper_table_4_1.csv"))
+    ap.add_argument("--out", default=os.path.join(ROOT, "out", "bench"))
+    ap.add_argument("--threads", type=int, default=0)
+    ap.add_argument("--only", nargs="*", help="run only these model names (as in the CSV, case-insensitive)")
+    args = ap.parse_args()
+
+    rows = []
+    with open(args.csv) as f:
+        for row in csv.DictReader(f):
+            if not row["file"] or not os.path.exists(os.path.join(args.models, row["file"])):
+                continue
+            if "no pruning" in row["model"]:
+                continue  # the same input and setting as "Cube Spike"; only the thesis's timing differs
+            if args.only and row["model"].lower() not in [o.lower() for o in args.only]:
+                continue
+            rows.append(row)
+
+    header = ("model", "blocks", "thesis", "orient", "field", "grow", "cover", "resolve", "carve", "total",
+              "thesis_total", "speedup", "peak_MB", "valid")
+    print("| " + " | ".join(header) + " |")
+    print("|" + "---|" * len(header))
+    failures = 0
+    for row in rows:
+        name = row["model"]
+        height = row["max_height_frac"]
+        slug = re.sub(r"[^a-z0-9]+", "_", name.lower()).strip("_")
+        outdir = os.path.join(args.out, slug)
+        cmd = ["/usr/bin/time", "-v", args.subfab, "decompose", os.path.join(args.models, row["file"]),
+               "-o", outdir, "--json", "--quiet", "--threads", str(args.threads)]
+        if height not in ("inf", ""):
+            cmd += ["--max-height", height]
+        start = time.time()
+        p = subprocess.run(cmd, capture_output=True, text=True)
+        wall = time.time() - start
+        peak = peak_rss_mb(p.stderr)
+        if p.returncode != 0:
+            failures += 1
+            err = p.stderr.strip().splitlines()
+            err = [l for l in err if not l.startswith("\t")]
+            print(f"| {name} | FAILED (exit {p.returncode}: {err[-1] if err else ''}) |", flush=True)
+            continue
+        summary = json.loads(p.stdout)
+        t = summary["timings_s"]
+        v = subprocess.run([args.subfab, "validate", os.path.join(args.models, row["file"]), outdir, "--quiet",
+                            "--threads", str(args.threads)], capture_output=True, text=True)
+        valid = "yes" if v.returncode == 0 else f"NO (exit {v.returncode})"
+        if v.returncode != 0:
+            failures += 1
+            sys.stderr.write(v.stdout + v.stderr)
+        thesis_total = float(row["total_s"])
+        speedup = thesis_total / t["total"] if t["total"] > 0 else math.inf
+        cells = [name, str(summary["num_blocks"]), row["blocks"]] + \
+                [f"{t[k]:.2f}" for k in ("orient", "field", "grow", "cover", "resolve", "carve", "total")] + \
+                [f"{thesis_total:.1f}", f"{speedup:.0f}x", f"{peak:.0f}", valid]
+        print("| " + " | ".join(cells) + " |", flush=True)
+    print(f"\n{len(rows)} models, {failures} failures; command: {' '.join(sys.argv)}")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
