@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "decompose/exact_mesh.h"
 
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
 #include <string>
 #include <vector>
 
@@ -86,6 +88,18 @@ Mesh to_double(const ExactMesh& mesh, RoundingReport* report) {
     }
   }
   return out;
+}
+
+std::size_t count_degenerate_faces(const Mesh& mesh) {
+  using P = CGAL::Exact_predicates_inexact_constructions_kernel::Point_3;
+  std::size_t n = 0;
+  for (const Triangle& t : mesh.faces) {
+    const Vec3& a = mesh.vertices[static_cast<std::size_t>(t[0])];
+    const Vec3& b = mesh.vertices[static_cast<std::size_t>(t[1])];
+    const Vec3& c = mesh.vertices[static_cast<std::size_t>(t[2])];
+    if (CGAL::collinear(P(a.x(), a.y(), a.z()), P(b.x(), b.y(), b.z()), P(c.x(), c.y(), c.z()))) ++n;
+  }
+  return n;
 }
 
 }  // namespace subfab::detail

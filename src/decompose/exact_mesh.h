@@ -37,6 +37,10 @@ struct RoundingReport {
 //! exact value (deterministic, independent of evaluation history).
 Mesh to_double(const ExactMesh& mesh, RoundingReport* report = nullptr);
 
+//! Number of faces whose three corners are exactly collinear (exact
+//! predicate). CGAL's corefinement must not be given such faces.
+std::size_t count_degenerate_faces(const Mesh& mesh);
+
 //! Runs a few tiny exact booleans (clip, difference, union, intersection,
 //! a non-manifold one, connected components, rounding) once per thread, so
 //! that CGAL's lazily created per-thread objects (the shared "zero" of each

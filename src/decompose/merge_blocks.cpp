@@ -61,12 +61,14 @@ bool within_limits(const Mesh& m, Axis axis, const MergeOptions& o) {
 //! The union of two blocks if it is a valid block, computed in a private arena.
 std::optional<Mesh> try_union(const Block& a, const Block& b, const MergeOptions& o) {
   std::optional<Mesh> out;
+  if (detail::count_degenerate_faces(a.mesh) > 0 || detail::count_degenerate_faces(b.mesh) > 0) return std::nullopt;
   detail::warm_up_exact_booleans();
   {
     detail::DeterministicArena arena;
     try {
       ExactMesh ea = detail::to_exact(a.mesh), eb = detail::to_exact(b.mesh), u;
-      if (PMP::corefine_and_compute_union(ea, eb, u) && u.number_of_faces() > 0) {
+      const auto np = CGAL::parameters::throw_on_self_intersection(true);
+      if (PMP::corefine_and_compute_union(ea, eb, u, np, np) && u.number_of_faces() > 0) {
         auto fcc = u.add_property_map<ExactMesh::Face_index, std::size_t>("f:cc", 0).first;
         if (PMP::connected_components(u, fcc) == 1 && exact_height_field(u, a.axis)) {
           detail::SuspendArena heap;

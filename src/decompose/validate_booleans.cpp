@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "decompose/exact_mesh.h"
@@ -26,6 +27,27 @@ using detail::ExactMesh;
 
 double mesh_volume(const ExactMesh& m) { return signed_volume(detail::to_double(m)); }
 
+//! CGAL's corefinement needs non-degenerate, self-intersection-free inputs:
+//! refuse degenerate faces here, and ask it to throw (not crash) on
+//! self-intersections near the intersection.
+void require_boolean_input(const Mesh& m, const char* what) {
+  if (const std::size_t n = detail::count_degenerate_faces(m))
+    throw AlgorithmError(std::string(what) + " has " + std::to_string(n) +
+                         " degenerate (zero-area) faces; exact booleans cannot be run on it");
+}
+
+const auto kThrowOnSelfIntersection = CGAL::parameters::throw_on_self_intersection(true);
+
+//! Runs op, turning CGAL's self-intersection exception into an AlgorithmError.
+template <typename Op>
+bool guarded(Op op) {
+  try {
+    return op();
+  } catch (const PMP::Corefinement::Self_intersection_exception&) {
+    throw AlgorithmError("a block self-intersects near the boolean's cut; exact booleans cannot be run on it");
+  }
+}
+
 bool boxes_overlap(const BoundingBox& a, const BoundingBox& b) {
   return (a.min.array() < b.max.array()).all() && (b.min.array() < a.max.array()).all();
 }
@@ -34,26 +56,40 @@ bool boxes_overlap(const BoundingBox& a, const BoundingBox& b) {
 
 double blocks_overlap(const Mesh& a, const Mesh& b) {
   if (!boxes_overlap(bounding_box(a), bounding_box(b))) return 0.0;
+  require_boolean_input(a, "a block");
+  require_boolean_input(b, "a block");
   {
     ExactMesh ea = detail::to_exact(a), eb = detail::to_exact(b), out;
-    if (PMP::corefine_and_compute_intersection(ea, eb, out)) return std::max(0.0, mesh_volume(out));
+    if (guarded([&] {
+          return PMP::corefine_and_compute_intersection(ea, eb, out, kThrowOnSelfIntersection, kThrowOnSelfIntersection);
+        }))
+      return std::max(0.0, mesh_volume(out));
   }
   // The intersection is not a 2-manifold (the blocks touch along an edge):
   // measure it as vol(a) - vol(a \ b) instead.
   ExactMesh ea = detail::to_exact(a), eb = detail::to_exact(b), out;
-  if (PMP::corefine_and_compute_difference(ea, eb, out))
+  if (guarded([&] {
+        return PMP::corefine_and_compute_difference(ea, eb, out, kThrowOnSelfIntersection, kThrowOnSelfIntersection);
+      }))
     return std::max(0.0, signed_volume(a) - mesh_volume(out));
   throw AlgorithmError("exact intersection of two blocks is not a 2-manifold");
 }
 
 double volume_outside(const Mesh& block, const Mesh& solid) {
   if (!boxes_overlap(bounding_box(block), bounding_box(solid))) return signed_volume(block);
+  require_boolean_input(block, "the block");
+  require_boolean_input(solid, "the input");
   {
     ExactMesh eb = detail::to_exact(block), es = detail::to_exact(solid), out;
-    if (PMP::corefine_and_compute_difference(eb, es, out)) return std::max(0.0, mesh_volume(out));
+    if (guarded([&] {
+          return PMP::corefine_and_compute_difference(eb, es, out, kThrowOnSelfIntersection, kThrowOnSelfIntersection);
+        }))
+      return std::max(0.0, mesh_volume(out));
   }
   ExactMesh eb = detail::to_exact(block), es = detail::to_exact(solid), out;
-  if (PMP::corefine_and_compute_intersection(eb, es, out))
+  if (guarded([&] {
+        return PMP::corefine_and_compute_intersection(eb, es, out, kThrowOnSelfIntersection, kThrowOnSelfIntersection);
+      }))
     return std::max(0.0, signed_volume(block) - mesh_volume(out));
   throw AlgorithmError("exact difference of a block and the input is not a 2-manifold");
 }
