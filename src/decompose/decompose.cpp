@@ -115,6 +115,8 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
     const auto t = Clock::now();
     SnapShrinkOptions o;
     o.snap_distance = average_edge_length(input) * options.grid_factor;
+    o.max_height = result.max_height;
+    o.machine_size = machine;
     o.progress = progress;
     selected = snap_and_shrink(result.canonical, std::move(selected), o).boxes;
     result.timings.resolve += seconds_since(t);

@@ -70,13 +70,7 @@ struct SizeLimits {
     if (e <= machine.x()) limit = std::max(limit, machine.y());
     return limit;
   }
-  bool fits(const Box3& b, Axis axis) const {
-    const int ad = axis_dimension(axis);
-    const int u = (ad + 1) % 3, v = (ad + 2) % 3;
-    const double h = b.max[ad] - b.min[ad], eu = b.max[u] - b.min[u], ev = b.max[v] - b.min[v];
-    if (h > std::min(max_height, machine.z())) return false;
-    return (eu <= machine.x() && ev <= machine.y()) || (eu <= machine.y() && ev <= machine.x());
-  }
+  bool fits(const Box3& b, Axis axis) const { return box_fits_limits(b, axis, max_height, machine); }
   //! `target` clamped so that the box's extent along dim stays within the limit.
   double clamp(const Box3& b, Axis axis, int dim, int side, double target) const {
     const double limit = extent_limit(b, axis, dim);

@@ -34,7 +34,8 @@ double face_coordinate(const Box3& b, int k, int side) { return side > 0 ? b.max
 //! Boxes with their covered faces and the per-face cover counts.
 class CoverState {
  public:
-  CoverState(const SolidIndex& index, std::vector<HeightBox> boxes) : index_(index), boxes_(std::move(boxes)) {
+  CoverState(const SolidIndex& index, std::vector<HeightBox> boxes, double max_height, const Vec3& machine)
+      : index_(index), boxes_(std::move(boxes)), max_height_(max_height), machine_(machine) {
     covered_.resize(boxes_.size());
     parallel_for(0, boxes_.size(), [&](std::size_t b) { covered_[b] = index_.faces_covered(boxes_[b]); });
     count_.assign(static_cast<std::size_t>(index_.num_faces()), 0);
@@ -50,6 +51,8 @@ class CoverState {
   bool try_replace(std::size_t b, const Box3& box) {
     if (!has_volume(box)) return false;
     const Axis axis = boxes_[b].axis;
+    // A move may enlarge the box: it must still respect the size limits.
+    if (!contains_box(boxes_[b].box, box) && !box_fits_limits(box, axis, max_height_, machine_)) return false;
     if (!contains_box(boxes_[b].box, box) && !index_.box_is_valid(box, axis)) return false;
     std::vector<int> now = index_.faces_covered(box, axis);
     std::vector<int> lost, gained;
@@ -69,6 +72,8 @@ class CoverState {
   std::vector<HeightBox> boxes_;
   std::vector<std::vector<int>> covered_;
   std::vector<int> count_;
+  double max_height_;
+  Vec3 machine_;
 };
 
 struct SnapCandidate {
@@ -188,7 +193,7 @@ SnapShrinkResult snap_and_shrink(const SolidIndex& index, std::vector<HeightBox>
                                  std::string(axis_name(boxes[i].axis)) + ") is not a valid height box");
   }
   const double snap = options.snap_distance < 0 ? average_edge_length(index.mesh()) : options.snap_distance;
-  CoverState state(index, std::move(boxes));
+  CoverState state(index, std::move(boxes), options.max_height, options.machine_size);
   SnapShrinkResult result;
   if (snap > 0) result.num_snapped = snap_faces(state, snap);
   if (options.shrink) result.num_shrunk = shrink_overlaps(state, options.max_shrink_passes);

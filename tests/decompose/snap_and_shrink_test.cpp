@@ -75,6 +75,22 @@ TEST(SnapAndShrink, AlignsNearlyCoincidentTops) {
   expect_valid_and_covering(mesh, boxes, r.boxes);
 }
 
+TEST(SnapAndShrink, SnapRespectsTheHeightLimit) {
+  // Regression (kitten at --max-height 0.05 gave a block taller than the
+  // limit): the same two tops as above, but with a height limit of 2.1 the
+  // lower top may not be raised to 2.25; the higher one is lowered instead.
+  const Mesh mesh = test::union_of_boxes({{{0, 0, 0}, {10, 1, 2}}});
+  const std::vector<HeightBox> boxes = {hb({0, 0, 0}, {6, 1, 2}, Axis::PosZ), hb({4, 0, 0}, {10, 1, 2.25}, Axis::PosZ)};
+  SnapShrinkOptions options;
+  options.snap_distance = 0.5;
+  options.shrink = false;
+  options.max_height = 2.1;
+  const SnapShrinkResult r = snap_and_shrink(mesh, boxes, options);
+  EXPECT_EQ(r.boxes[0].box.max.z(), r.boxes[1].box.max.z());
+  for (const HeightBox& b : r.boxes) EXPECT_LE(b.box.max.z() - b.box.min.z(), 2.1);
+  expect_valid_and_covering(mesh, boxes, r.boxes);
+}
+
 TEST(SnapAndShrink, NoSnapBeyondTheDistance) {
   const std::vector<HeightBox> boxes = {hb({0, 0, 0}, {4, 1, 1}, Axis::PosZ), hb({5, 0, 0}, {10, 1, 1}, Axis::PosZ)};
   SnapShrinkOptions options;

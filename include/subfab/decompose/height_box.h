@@ -5,6 +5,7 @@
 //! stands for is the input solid intersected with the box (Section 4.2).
 #pragma once
 
+#include <algorithm>
 #include <vector>
 
 #include "subfab/decompose/axis.h"
@@ -39,5 +40,17 @@ struct HeightBox {
   Axis axis = Axis::PosZ;
   int seed_face = -1;  // triangle the box was grown from (-1: none)
 };
+
+//! True when a box milled along `axis` respects the size limits of issue 3:
+//! its extent along the axis is at most min(max_height, machine.z()), and its
+//! two other extents fit machine.x() x machine.y() in either order (model
+//! units; infinite values mean no limit).
+inline bool box_fits_limits(const Box3& b, Axis axis, double max_height, const Vec3& machine) {
+  const int ad = axis_dimension(axis);
+  const int u = (ad + 1) % 3, v = (ad + 2) % 3;
+  const double h = b.max[ad] - b.min[ad], eu = b.max[u] - b.min[u], ev = b.max[v] - b.min[v];
+  if (h > std::min(max_height, machine.z())) return false;
+  return (eu <= machine.x() && ev <= machine.y()) || (eu <= machine.y() && ev <= machine.x());
+}
 
 }  // namespace subfab

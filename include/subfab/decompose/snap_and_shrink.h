@@ -24,6 +24,7 @@
 //! Deterministic.
 #pragma once
 
+#include <limits>
 #include <vector>
 
 #include "subfab/core/progress.h"
@@ -38,6 +39,10 @@ struct SnapShrinkOptions {
                                  // cell at grid factor 1); 0: no snapping
   bool shrink = true;            // trim overlaps after snapping
   int max_shrink_passes = 4;     // passes over all overlapping pairs (>= 0)
+  double max_height = std::numeric_limits<double>::infinity();  // block height limit along the
+                                 // box's axis, model units: a snap never enlarges a box past it
+  Vec3 machine_size = Vec3::Constant(std::numeric_limits<double>::infinity());  // work volume
+                                 // X, Y, Z in model units (Z along the axis; see box_fits_limits)
   Progress* progress = nullptr;  // stage reporting (nullptr = silent)
 };
 
