@@ -9,6 +9,8 @@
 #include <cstdio>
 #include <sys/wait.h>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 
 namespace subfab::test {
@@ -39,6 +41,17 @@ inline std::filesystem::path temp_dir() {
   std::filesystem::create_directories(dir);
   return dir;
 }
+
+//! The whole content of a file ("" if it cannot be read).
+inline std::string slurp(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+//! A path in double quotes, for run_subfab() argument strings.
+inline std::string quoted(const std::filesystem::path& path) { return "\"" + path.string() + "\""; }
 
 #ifdef SUBFAB_BINARY
 //! Result of running the subfab command.

@@ -13,14 +13,9 @@ namespace {
 namespace fs = std::filesystem;
 using test::run_subfab;
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test::slurp;
 
-std::string quoted(const fs::path& p) { return "\"" + p.string() + "\""; }
+using test::quoted;
 
 TEST(DecomposeCli, DecomposesValidatesAndIsThreadIndependent) {
   const fs::path dir = test::temp_dir();

@@ -13,12 +13,7 @@
 namespace subfab {
 namespace {
 
-std::string quoted(const std::filesystem::path& p) {
-  std::string text(1, '"');
-  text += p.string();
-  text += '"';
-  return text;
-}
+using test::quoted;
 
 void write_file(const std::filesystem::path& path, const std::string& text) {
   std::ofstream(path, std::ios::binary) << text;

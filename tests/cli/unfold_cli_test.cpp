@@ -14,14 +14,9 @@ namespace {
 namespace fs = std::filesystem;
 using test::run_subfab;
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test::slurp;
 
-std::string quoted(const fs::path& p) { return "\"" + p.string() + "\""; }
+using test::quoted;
 
 // stdout's JSON object (stderr progress lines come before it).
 nlohmann::json json_of(const std::string& output) {

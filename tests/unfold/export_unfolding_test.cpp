@@ -17,12 +17,7 @@
 namespace subfab {
 namespace {
 
-std::string slurp(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using test::slurp;
 
 TEST(ExportUnfolding, VbitConvention) {
   EXPECT_DOUBLE_EQ(vbit_angle_deg(90), 90);
