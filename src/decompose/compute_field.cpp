@@ -5,8 +5,8 @@
 #include <cmath>
 #include <sstream>
 
-#include "decompose/classify_grid_points.h"
 #include "decompose/mark_triangle_cells.h"
+#include "subfab/checks/classify_grid_points.h"
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
 
@@ -19,13 +19,21 @@ constexpr double kMaxGridPoints = 2147483647.0;
 //! Bits of the per-point "too deep" mask, one per axis_index.
 constexpr std::uint8_t deep_bit(Axis a) { return static_cast<std::uint8_t>(1u << axis_index(a)); }
 
+//! The field grid as the exact classifier of src/checks sees it (same
+//! points, same coordinates).
+GridPoints as_grid_points(const GridGeometry& grid) {
+  return GridPoints{.origin = grid.origin, .spacing = grid.spacing, .size = grid.num_points};
+}
+
 //! For every grid point, bit axis_index(a) set when the point is inside and
-//! the ray along a leaves the solid only beyond max_height.
-std::vector<std::uint8_t> mark_too_deep(const Mesh& mesh, const GridGeometry& grid,
-                                        const std::vector<std::uint8_t>& inside, double max_height) {
+//! the ray along a leaves the solid only beyond max_height. Inside/outside
+//! and the crossings are exact (classify_grid_points, compute_line_crossings).
+std::vector<std::uint8_t> mark_too_deep(const Mesh& mesh, const GridGeometry& grid, double max_height) {
+  const GridPoints points = as_grid_points(grid);
+  const std::vector<std::int32_t> inside = classify_grid_points(mesh, points);
   std::vector<std::uint8_t> deep(grid.num_total_points(), 0);
   for (int dim = 0; dim < 3; ++dim) {
-    const detail::LineCrossings lines = detail::compute_line_crossings(mesh, grid, dim);
+    const LineCrossings lines = compute_line_crossings(mesh, points, dim);
     const int u = (dim + 1) % 3, v = (dim + 2) % 3;
     const int nu = lines.num_lines[0];
     const int n = grid.num_points[static_cast<std::size_t>(dim)];
@@ -43,7 +51,7 @@ std::vector<std::uint8_t> mark_too_deep(const Mesh& mesh, const GridGeometry& gr
           for (int t = 0; t < n; ++t) {
             idx[static_cast<std::size_t>(dim)] = t;
             const std::size_t p = grid.index(idx[0], idx[1], idx[2]);
-            if (!inside[p]) continue;
+            if (inside[p] <= 0) continue;
             const double x = grid.coordinate(dim, t);
             // Exit upwards: first crossing at or above x; downwards: last at or below.
             const double* up = std::lower_bound(begin, end, x);
@@ -199,10 +207,7 @@ std::array<HeightField, 6> compute_fields(const Mesh& mesh, const GridGeometry& 
 
   const std::vector<std::uint16_t> cell_flags = detail::mark_triangle_cells(mesh, grid);
   std::vector<std::uint8_t> deep;
-  if (std::isfinite(options.max_height)) {
-    const std::vector<std::uint8_t> inside = detail::classify_grid_points(mesh, grid);
-    deep = mark_too_deep(mesh, grid, inside, options.max_height);
-  }
+  if (std::isfinite(options.max_height)) deep = mark_too_deep(mesh, grid, options.max_height);
 
   std::array<HeightField, 6> fields;
   for (Axis a : kAllAxes) {

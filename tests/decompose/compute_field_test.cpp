@@ -1,15 +1,12 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "subfab/decompose/compute_field.h"
 
-#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
-#include <CGAL/Side_of_triangle_mesh.h>
-#include <CGAL/Surface_mesh.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 
-#include "decompose/classify_grid_points.h"
+#include "subfab/checks/classify_grid_points.h"
 #include "decompose/exact_normal_signs.h"
 #include "decompose/mark_triangle_cells.h"
 #include "decompose/triangle_meets_closed_box.h"
@@ -234,56 +231,6 @@ TEST(ComputeFields, PointFarOutsideIsFree) {
   }
 }
 
-// Rule: p is classified as p + (e, e^2, e^3); for the cube [0, 1]^3 that makes
-// the inside exactly the half-open box [0, 1)^3 for grid points.
-TEST(ClassifyGridPoints, CubeIsHalfOpenOnItsFaces) {
-  const Mesh cube = box_mesh(Vec3(0, 0, 0), Vec3(1, 1, 1));
-  for (const GridGeometry& g : {hand_grid(Vec3::Constant(-0.5), 0.25, {9, 9, 9}),
-                                hand_grid(Vec3(-0.55, -0.45, -0.61), 0.3, {8, 7, 8})}) {
-    const auto inside = detail::classify_grid_points(cube, g);
-    std::size_t num_inside = 0;
-    for (int k = 0; k < g.num_points[2]; ++k)
-      for (int j = 0; j < g.num_points[1]; ++j)
-        for (int i = 0; i < g.num_points[0]; ++i) {
-          const Vec3 p = g.point(i, j, k);
-          const bool expected = (p.array() >= 0).all() && (p.array() < 1).all();
-          EXPECT_EQ(inside[g.index(i, j, k)] != 0, expected) << p.transpose();
-          num_inside += expected;
-        }
-    EXPECT_GT(num_inside, 0u);
-  }
-}
-
-// Independent exact check (CGAL Side_of_triangle_mesh on an exact kernel) on
-// every grid point not lying on the surface.
-TEST(ClassifyGridPoints, AgreesWithExactSideOfTriangleMesh) {
-  using K = CGAL::Exact_predicates_exact_constructions_kernel;
-  using SurfaceMesh = CGAL::Surface_mesh<K::Point_3>;
-  for (const char* name : {"spot.obj", "bunny_lowres.off"}) {
-    const Mesh mesh = read_mesh(test::data_path(name));
-    SurfaceMesh sm;
-    std::vector<SurfaceMesh::Vertex_index> vs;
-    for (const Vec3& p : mesh.vertices) vs.push_back(sm.add_vertex(K::Point_3(p.x(), p.y(), p.z())));
-    for (const auto& t : mesh.faces) sm.add_face(vs[static_cast<std::size_t>(t[0])], vs[static_cast<std::size_t>(t[1])], vs[static_cast<std::size_t>(t[2])]);
-    CGAL::Side_of_triangle_mesh<SurfaceMesh, K> side(sm);
-    const GridGeometry g = make_grid(mesh, 2.0);
-    const auto inside = detail::classify_grid_points(mesh, g);
-    std::size_t num_inside = 0, num_checked = 0;
-    for (int k = 0; k < g.num_points[2]; ++k)
-      for (int j = 0; j < g.num_points[1]; ++j)
-        for (int i = 0; i < g.num_points[0]; ++i) {
-          const Vec3 p = g.point(i, j, k);
-          const auto s = side(K::Point_3(p.x(), p.y(), p.z()));
-          if (s == CGAL::ON_BOUNDARY) continue;
-          ++num_checked;
-          num_inside += s == CGAL::ON_BOUNDED_SIDE;
-          ASSERT_EQ(inside[g.index(i, j, k)] != 0, s == CGAL::ON_BOUNDED_SIDE) << name << " at " << p.transpose();
-        }
-    EXPECT_GT(num_inside, 100u) << name;
-    EXPECT_GT(num_checked, 1000u) << name;
-  }
-}
-
 TEST(HeightField, PrefixCountsEqualBruteForce) {
   const Mesh mesh = read_mesh(test::data_path("bunny_lowres.off"));
   const auto fields = compute_fields(mesh, {.grid_factor = 2.0, .max_height = 0.02});
@@ -323,7 +270,7 @@ TEST(ComputeFields, HeightLimitForbidsOnlyDeepPoints) {
   const GridGeometry g = hand_grid(Vec3(-0.37, -0.41, -0.33), 0.2, {9, 9, 25});
   const double max_height = 0.3 * 4;
   const auto fields = compute_fields(box, g, {.max_height = max_height});
-  const auto inside = detail::classify_grid_points(box, g);
+  const auto inside = classify_grid_points(box, GridPoints{.origin = g.origin, .spacing = g.spacing, .size = g.num_points});
   for (Axis a : kAllAxes) {
     const HeightField& f = fields[static_cast<std::size_t>(axis_index(a))];
     const auto surface_only = expected_box_field(g, lo, hi, a);
@@ -335,7 +282,7 @@ TEST(ComputeFields, HeightLimitForbidsOnlyDeepPoints) {
           const std::size_t p = g.index(i, j, k);
           const Vec3 x = g.point(i, j, k);
           const double exit = axis_sign(a) > 0 ? hi[d] - x[d] : x[d] - lo[d];
-          const bool deep = inside[p] && exit > max_height;
+          const bool deep = inside[p] > 0 && exit > max_height;
           const FieldValue expected = deep ? FieldValue::Forbidden : surface_only[p];
           EXPECT_EQ(f.values[p], expected) << axis_name(a) << " at " << x.transpose();
           num_deep += deep && surface_only[p] != FieldValue::Forbidden;

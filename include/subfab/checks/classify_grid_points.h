@@ -8,7 +8,10 @@
 //! Method: one vertical line (along z) per grid column; every triangle whose
 //! xy-projection contains the column is crossed, and the crossing is ordered
 //! against the grid points of the column, all with exact CGAL predicates
-//! (Epick orientation_2 / orientation). Degenerate cases (a column through a
+//! (Epick orientation_2 / orientation). The same line/triangle test along x,
+//! y or z gives the crossings the decomposition needs for its height limit
+//! (compute_line_crossings(); Section 4.3.2: the authors voted with 3 random
+//! rays, we count exact crossings). Degenerate cases (a column through a
 //! mesh edge or vertex, a grid point exactly on the surface) are decided by
 //! symbolic perturbation: every grid point p is classified as the point
 //! p + (e, e^2, e^3) for an infinitesimal e > 0, which is never on the
@@ -17,6 +20,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -48,6 +52,28 @@ struct GridPoints {
     return Vec3(coordinate(0, i), coordinate(1, j), coordinate(2, k));
   }
 };
+
+//! The crossings of the grid lines parallel to one dimension with a surface.
+//! Line (a, b) passes through the grid points with index a along
+//! u = (dim + 1) % 3 and b along v = (dim + 2) % 3; its number is
+//! a + size[u] * b.
+struct LineCrossings {
+  int dim = 2;                          // the lines are parallel to this dimension (0, 1, 2)
+  std::array<int, 2> num_lines{0, 0};   // size[u], size[v]
+  std::vector<std::size_t> offsets;     // line l's crossings: positions[offsets[l] .. offsets[l + 1])
+  std::vector<double> positions;        // coordinate along dim (model units, rounded), ascending per line
+};
+
+//! Crossings of every grid line parallel to `dim` with the faces of `mesh`.
+//! Whether a line crosses a face is decided exactly, with the same symbolic
+//! perturbation as classify_grid_points() (so a line through an edge or a
+//! vertex crosses exactly one of the faces around it, and faces parallel to
+//! the line are never crossed); the position of each crossing is the rounded
+//! intersection with the face's plane (used for distances, never for
+//! inside/outside). Parallel over lines; deterministic.
+//! 	hrow InvalidArgumentError when the grid is empty, the spacing is not > 0
+//!        or dim is not 0, 1 or 2.
+LineCrossings compute_line_crossings(const Mesh& mesh, const GridPoints& grid, int dim);
 
 //! Winding number of `mesh` around every point of `grid` (a point infinitely
 //! close to it, see the file comment): for a closed, outward-oriented solid,
