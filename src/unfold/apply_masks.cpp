@@ -8,6 +8,8 @@
 
 #include "mask_catalogue.h"
 #include "mc_case_table.h"
+#include "subfab/core/error.h"
+#include "unfold/fidelity_band.h"
 
 namespace subfab {
 namespace {
@@ -34,7 +36,11 @@ class MaskEngine {
     // the surface never drifts more than about one cell from where it was.
     band_.assign(g_.num_points(), 0);
     for (std::size_t p = 0; p < g_.num_points(); ++p) band_[p] = on_surface(p);
+    if (options.reference)
+      fidelity_ = unfold_detail::FidelityBand(*options.reference, g_, l_.inside, options.fidelity_radius);
   }
+
+  std::size_t num_fidelity_constraints() const { return fidelity_.num_constraints(); }
 
   MaskResult run() {
     MaskResult result;
@@ -60,7 +66,7 @@ class MaskEngine {
         } else {
           // After the catalogue: the anchor alone, if flipping it is simple
           // and strictly lowers the local energy (generic single-point move).
-          if (!opt_.single_point_moves || !single_point_move(ac, best)) continue;
+          if (!opt_.single_point_moves || !single_point_move(ac, best, result)) continue;
         }
         if (result.num_flips + best.size() > cap) {
           result.hit_flip_cap = true;
@@ -71,6 +77,7 @@ class MaskEngine {
           l_.inside[p] ^= 1;
           if (++flips_[p] == opt_.max_flips_per_point) ++result.num_frozen_points;
         }
+        fidelity_.commit(l_.inside, best);
         result.num_flips += best.size();
         ++result.num_moves;
         // Masks reach 2 points from their anchor: re-examine those anchors.
@@ -358,7 +365,7 @@ class MaskEngine {
     return best;
   }
 
-  bool single_point_move(const Int3& c, std::vector<std::size_t>& chosen) {
+  bool single_point_move(const Int3& c, std::vector<std::size_t>& chosen, MaskResult& result) {
     if (!interior(c)) return false;
     const std::size_t p = index(c);
     if (!band_[p] || flips_[p] >= opt_.max_flips_per_point || !is_simple(c)) return false;
@@ -368,8 +375,13 @@ class MaskEngine {
     l_.inside[p] ^= 1;
     const long after = local_energy(cubes);
     const bool touches = count_touchings(cubes) > touch_before;
+    const bool faithful = after >= before || touches || fidelity_.allows(l_.inside, {p});
     l_.inside[p] ^= 1;
     if (after >= before || touches) return false;
+    if (!faithful) {
+      ++result.num_rejected_fidelity;
+      return false;
+    }
     chosen = {p};
     return true;
   }
@@ -402,6 +414,8 @@ class MaskEngine {
       }
       if (done == points.size() && count_touchings(cubes) > touch_before) {
         ++result.num_rejected_topology;
+      } else if (done == points.size() && !fidelity_.allows(l_.inside, points)) {
+        ++result.num_rejected_fidelity;
       } else if (done == points.size()) {
         const long after = local_energy(cubes);
         const double chart = m.poi_sets.size() > 1 ? largest_adjacent_chart(cubes) : 0;
@@ -436,17 +450,21 @@ class MaskEngine {
   std::array<std::size_t, 8> corner_offset_{};
   std::vector<int> flips_;
   std::vector<char> band_;
+  unfold_detail::FidelityBand fidelity_;  // empty without options.reference
 };
 
 }  // namespace
 
 MaskResult apply_masks(const Lattice& lattice, const MaskOptions& options) {
+  if (!(options.fidelity_radius > 0) || !std::isfinite(options.fidelity_radius))
+    throw InvalidArgumentError("the fidelity radius of the mask stage must be a positive number of grid spacings");
   StageScope stage(options.progress, "masks");
   Lattice work = lattice;
   MaskResult result;
   if (work.grid.size[0] >= 3 && work.grid.size[1] >= 3 && work.grid.size[2] >= 3) {
     MaskEngine engine(work, options);
     result = engine.run();
+    result.num_fidelity_constraints = engine.num_fidelity_constraints();
   }
   result.lattice = std::move(work);
   result.surface = marching_cubes(result.lattice);
@@ -454,6 +472,10 @@ MaskResult apply_masks(const Lattice& lattice, const MaskOptions& options) {
   if (options.progress) {
     options.progress->info(std::to_string(result.num_moves) + " mask moves (" + std::to_string(result.num_flips) +
                            " sign flips), " + std::to_string(result.charts.poly.num_facets()) + " facets after masks");
+    if (options.reference)
+      options.progress->info(std::to_string(result.num_rejected_fidelity) +
+                             " moves refused by the fidelity band (input farther than " +
+                             std::to_string(options.fidelity_radius) + " spacings from the surface)");
     if (result.num_frozen_points > 0)
       options.progress->info(std::to_string(result.num_frozen_points) +
                              " lattice points reached the flip limit (loops cut)");

@@ -33,7 +33,7 @@ SimplifyUnfoldableResult simplify_unfoldable(const Mesh& mesh, const SimplifyUnf
   PolyMesh poly;
   Mesh masked_triangles;
   if (options.masks) {
-    MaskResult masked = apply_masks(lattice, {.progress = progress});
+    MaskResult masked = apply_masks(lattice, {.reference = &mesh, .progress = progress});
     masked_triangles = std::move(masked.surface.mesh);
     poly = std::move(masked.charts.poly);
   } else {

@@ -16,6 +16,7 @@
 #include "subfab/mesh/read_mesh.h"
 #include "subfab/unfold/lattice_directions.h"
 #include "test_support.h"
+#include "unfold/hausdorff_distance.h"
 #include "unfold/mask_catalogue.h"
 
 namespace subfab {
@@ -176,8 +177,12 @@ TEST(ApplyMasks, RealModelsStayValidAndLoseFacets) {
     const Lattice l = build_lattice(m, {});
     const McSurface s = marching_cubes(l);
     const Charts c = extract_charts(s.mesh, s.normals);
-    const MaskResult r = apply_masks(l, {});
+    const MaskResult r = apply_masks(l, {.reference = &m});
     expect_valid(r, model.path.filename().string());
+    // Fidelity band: every surface vertex within 1.5 spacings of the input
+    // (guaranteed), and the input within 1.5 spacings of the surface (its
+    // samples keep a surface vertex in their ball; estimated on samples).
+    EXPECT_LE(unfold_detail::hausdorff_distance(m, r.surface.mesh, 20000), 1.5 * l.grid.spacing) << model.path;
     EXPECT_LT(r.charts.poly.num_facets(), c.poly.num_facets()) << model.path;
     EXPECT_EQ(euler(r.surface.mesh), euler(s.mesh)) << model.path;
     EXPECT_FALSE(r.hit_flip_cap) << model.path;

@@ -11,11 +11,14 @@
 //!     a <- pop front
 //!     for every oriented mask matching the signs around a:
 //!       for every POI set S of the mask (points not frozen, off the border,
-//!       and next to the ORIGINAL surface: the fidelity band):
+//!       and next to the ORIGINAL surface: the surface -> input side of the
+//!       fidelity band):
 //!         flip S tentatively, one point at a time; reject S if a flip is
 //!         not topology-preserving (simple point, (6,18) adjacency) or makes
 //!         two cubes use the crossing diagonals of their shared face (the
-//!         surface would touch itself there);
+//!         surface would touch itself there) or leaves a sample of the
+//!         input with no sign change within `fidelity_radius` (the input ->
+//!         surface side of the fidelity band, see fidelity_band.h);
 //!         dE <- change of E over the cubes around S (E = number of
 //!         triangle edges whose two triangles have different normals)
 //!       eligible: dE < 0, or dE = 0 for a mask with several POI sets when
@@ -23,8 +26,9 @@
 //!       among eligible sets take the one whose adjacent charts are biggest
 //!         (area, flood fill inside the charts), then smallest dE
 //!       flip it; push every point within 2 of it to the queue
-//!     if no mask applies: flip `a` alone if that is simple and lowers E
-//!       (single_point_moves; our addition, not in the thesis)
+//!     if no mask applies: flip `a` alone if that is simple, keeps the
+//!       fidelity band and lowers E (single_point_moves; our addition, not
+//!       in the thesis)
 //! The marching-cubes triangles of a cube are a function of its 8 signs, so
 //! a flip changes only the 8 cubes around each flipped point: E, the charts
 //! around them and the validity checks are all evaluated on those cubes and
@@ -36,6 +40,7 @@
 #include <cstddef>
 
 #include "subfab/core/progress.h"
+#include "subfab/mesh/mesh.h"
 #include "subfab/unfold/build_lattice.h"
 #include "subfab/unfold/extract_charts.h"
 #include "subfab/unfold/marching_cubes.h"
@@ -49,6 +54,12 @@ struct MaskOptions {
   int chart_probe_triangles = 128;  // flood-fill cap (triangles) when measuring a chart's area
   bool single_point_moves = true;   // after the catalogue, also flip a lone surface point when
                                     // that strictly lowers the local energy (not in the thesis)
+  //! The input surface (model units, same frame as the lattice); when given,
+  //! no move may leave a point of it farther than fidelity_radius from the
+  //! surface (fidelity band). Null: only the point band applies.
+  const Mesh* reference = nullptr;
+  double fidelity_radius = 1.5;     // grid spacings (> 0): ball around each input sample that must
+                                    // keep a lattice edge with a sign change (a surface vertex)
   Progress* progress = nullptr;     // optional progress receiver
 };
 
@@ -60,6 +71,8 @@ struct MaskResult {
   std::size_t num_flips = 0;            // point flips applied
   std::size_t num_moves = 0;            // POI sets applied
   std::size_t num_rejected_topology = 0;  // POI sets refused: topology change or self-contact
+  std::size_t num_rejected_fidelity = 0;  // moves refused: they would leave the fidelity band
+  std::size_t num_fidelity_constraints = 0;  // distinct sample balls of the fidelity band
   std::size_t num_frozen_points = 0;    // points that reached max_flips_per_point (loops cut)
   bool hit_flip_cap = false;            // stopped by max_total_flips
 };
@@ -68,7 +81,12 @@ struct MaskResult {
 //! surface (see the file comment). The surface stays closed, 2-manifold and
 //! of the same topology (only simple points are flipped; the lattice border
 //! never changes). Deterministic (one fixed processing order).
+//! Fidelity: every flipped point is next to the original surface, so every
+//! vertex of the result is within 1.5 spacings of the input; with
+//! options.reference, every sample of the input keeps a surface vertex
+//! within options.fidelity_radius spacings (if the original lattice had one).
 //! \param lattice a lattice from build_lattice() (outer layer outside).
+//! \throw InvalidArgumentError if fidelity_radius is not > 0.
 MaskResult apply_masks(const Lattice& lattice, const MaskOptions& options = {});
 
 }  // namespace subfab
