@@ -114,6 +114,62 @@ TEST(ExportUnfolding, WritesAllFilesConsistently) {
   EXPECT_EQ(slurp(dir / "preview.png").substr(1, 3), "PNG");
 }
 
+// unfold.json on a facet with a hole: vertices3d and vertices2d are both the
+// outer loop, corner for corner; holes3d and holes2d list the inner loops in
+// the same order (and only on facets that have holes); every corner of a
+// facet, outer and inner, is congruent between 3D and 2D.
+TEST(ExportUnfolding, JsonFacetWithAHoleListsTheSameCornersIn3dAnd2d) {
+  const PolyMesh mesh = test::box_on_box();
+  ASSERT_EQ(mesh.facets[1].loops.size(), 2u);
+  const Unfolding u = unfold_nets(mesh);
+  const auto dir = test::temp_dir();
+  export_unfolding(mesh, u, UnfoldSummary{.facets_mc = 11, .facets_after_masks = 11, .facets_final = 11,
+                                          .nets = u.nets.size(), .hausdorff = 0},
+                   dir, {.preview_width = 200, .preview_height = 100});
+  const auto j = nlohmann::json::parse(slurp(dir / "unfold.json"));
+  ASSERT_EQ(j["facets"].size(), mesh.num_facets());
+  std::size_t facets_with_holes = 0;
+  for (std::size_t f = 0; f < mesh.num_facets(); ++f) {
+    const auto& jf = j["facets"][f];
+    EXPECT_EQ(jf["id"], f);
+    const Facet& facet = mesh.facets[f];
+    EXPECT_EQ(jf.contains("holes3d"), facet.loops.size() > 1) << f;
+    EXPECT_EQ(jf.contains("holes2d"), facet.loops.size() > 1) << f;
+    // All loops of the facet, 3D and 2D, in the file's order.
+    std::vector<Vec3> p3;
+    std::vector<Vec2> p2;
+    auto take = [&](const nlohmann::json& l3, const nlohmann::json& l2, const std::vector<int>& loop) {
+      ASSERT_EQ(l3.size(), loop.size());
+      ASSERT_EQ(l2.size(), loop.size());
+      for (std::size_t c = 0; c < loop.size(); ++c) {
+        const Vec3 q(l3[c][0], l3[c][1], l3[c][2]);
+        EXPECT_EQ(q, mesh.vertices[static_cast<std::size_t>(loop[c])]);  // the facet's own loop, same order
+        p3.push_back(q);
+        p2.emplace_back(l2[c][0], l2[c][1]);
+      }
+    };
+    take(jf["vertices3d"], jf["vertices2d"], facet.loops[0]);
+    if (facet.loops.size() > 1) {
+      ++facets_with_holes;
+      ASSERT_EQ(jf["holes3d"].size(), facet.loops.size() - 1);
+      ASSERT_EQ(jf["holes2d"].size(), facet.loops.size() - 1);
+      for (std::size_t l = 1; l < facet.loops.size(); ++l) take(jf["holes3d"][l - 1], jf["holes2d"][l - 1], facet.loops[l]);
+    }
+    for (std::size_t a = 0; a < p3.size(); ++a)
+      for (std::size_t b = a + 1; b < p3.size(); ++b)
+        EXPECT_NEAR((p3[a] - p3[b]).norm(), (p2[a] - p2[b]).norm(), 1e-9) << f;
+    // Not mirrored: the outer loop keeps its counter-clockwise turn in 2D.
+    double twice_area = 0;
+    for (std::size_t c = 0; c < facet.loops[0].size(); ++c) {
+      const Vec2& a = p2[c];
+      const Vec2& b = p2[(c + 1) % facet.loops[0].size()];
+      twice_area += a.x() * b.y() - a.y() * b.x();
+    }
+    EXPECT_GT(twice_area, 0) << f;
+  }
+  EXPECT_EQ(facets_with_holes, 1u);
+}
+
 TEST(ExportUnfolding, SheetsSplitNetsAndKeepThemApart) {
   const PolyMesh mesh = test::staircase();
   Unfolding u = unfold_nets(mesh);

@@ -90,4 +90,23 @@ inline PolyMesh bevelled_block() {
   return extrude({{1, 0}, {3, 0}, {4, 1}, {4, 2}, {3, 3}, {1, 3}, {0, 2}, {0, 1}}, 2);
 }
 
+//! The box [0,4]^2 x [0,2] with the box [1,3]^2 x [2,3] standing on it: the
+//! big box's top facet (id 1) is a square with a square hole (two loops).
+inline PolyMesh box_on_box() {
+  std::vector<Vec3> v;
+  for (double z : {0.0, 2.0}) v.insert(v.end(), {{0, 0, z}, {4, 0, z}, {4, 4, z}, {0, 4, z}});
+  for (double z : {2.0, 3.0}) v.insert(v.end(), {{1, 1, z}, {3, 1, z}, {3, 3, z}, {1, 3, z}});
+  return make_poly(v, {{{0, 3, 2, 1}},
+                       {{4, 5, 6, 7}, {8, 11, 10, 9}},
+                       {{0, 1, 5, 4}},
+                       {{1, 2, 6, 5}},
+                       {{2, 3, 7, 6}},
+                       {{3, 0, 4, 7}},
+                       {{8, 9, 13, 12}},
+                       {{9, 10, 14, 13}},
+                       {{10, 11, 15, 14}},
+                       {{11, 8, 12, 15}},
+                       {{12, 13, 14, 15}}});
+}
+
 }  // namespace subfab::test
