@@ -74,16 +74,16 @@ int run_decompose(const DecomposeArgs& args) {
     require_closed_solid(mesh, &progress);  // InvalidMeshError: exit 2, with the reason
   }
   const DecomposeResult result = decompose(mesh, options);
+  std::vector<ExportedBlock> blocks;
   {
     StageScope stage(&progress, "export");
     ExportInfo info;
     info.input_path = args.mesh;
     info.options = options;
-    export_decomposition(mesh, result, info, args.outdir);
+    blocks = export_decomposition(mesh, result, info, args.outdir);
   }
   if (!args.common.quiet) progress.print_timings(std::cerr);
 
-  const std::vector<ExportedBlock> blocks = make_exported_blocks(mesh, result);
   double total = 0, smallest = std::numeric_limits<double>::infinity();
   for (const auto& b : blocks) {
     total += b.volume;

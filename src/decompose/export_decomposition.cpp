@@ -6,23 +6,16 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
-#include <unordered_map>
 
+#include "decompose/rotate_accurately.h"
 #include "subfab/core/error.h"
+#include "subfab/decompose/finalize_blocks.h"
 #include "subfab/mesh/write_mesh.h"
 
 namespace subfab {
 namespace {
 
 using Json = nlohmann::ordered_json;
-
-struct VecHash {
-  std::size_t operator()(const Vec3& v) const {
-    std::size_t h = 0;
-    for (int k = 0; k < 3; ++k) h = h * 1000003u ^ std::hash<double>()(v[k]);
-    return h;
-  }
-};
 
 Json vec_json(const Vec3& v) { return Json::array({v.x(), v.y(), v.z()}); }
 
@@ -49,37 +42,32 @@ Eigen::Matrix3d axis_to_machine(Axis axis) {
   return q;
 }
 
-std::vector<ExportedBlock> make_exported_blocks(const Mesh& input, const DecomposeResult& result) {
-  std::unordered_map<Vec3, int, VecHash> input_vertex;
-  const std::size_t n_in = std::min(result.num_input_vertices, result.canonical.num_vertices());
-  for (std::size_t i = 0; i < n_in && i < input.num_vertices(); ++i)
-    input_vertex.emplace(result.canonical.vertices[i], static_cast<int>(i));
-  const Eigen::Matrix3d back = result.rotation.transpose();
+std::vector<ExportedBlock> make_exported_blocks(const Mesh& input, const DecomposeResult& result,
+                                                Progress* progress) {
+  FinalizeOptions fo;
+  fo.progress = progress;
+  FinalizeResult finished = finalize_blocks(input, result, fo);
   std::vector<ExportedBlock> out;
-  out.reserve(result.blocks.size());
-  for (const Block& b : result.blocks) {
+  out.reserve(finished.blocks.size());
+  for (FinalBlock& b : finished.blocks) {
     ExportedBlock e;
     e.axis = b.axis;
-    e.direction = back * axis_direction(b.axis);
-    e.mesh.faces = b.mesh.faces;
-    e.mesh.vertices.reserve(b.mesh.num_vertices());
-    for (const Vec3& c : b.mesh.vertices) {
-      auto it = input_vertex.find(c);
-      e.mesh.vertices.push_back(it != input_vertex.end() ? input.vertices[static_cast<std::size_t>(it->second)]
-                                                         : Vec3(back * c));
-    }
-    // Machine mesh from the canonical coordinates: an exact signed permutation, then a shift.
-    const Eigen::Matrix3d q = axis_to_machine(b.axis);
-    e.machine_mesh.faces = b.mesh.faces;
+    e.direction = b.direction;
+    e.mesh = std::move(b.mesh);
+    // Machine mesh: the final block through (axis_to_machine x rotation), an
+    // exact product (signed permutation), each coordinate rounded once; then a shift.
+    const Eigen::Matrix3d to_machine = axis_to_machine(b.axis) * result.rotation;
+    e.machine_mesh.faces = e.mesh.faces;
+    e.machine_mesh.vertices.reserve(e.mesh.num_vertices());
     BoundingBox mb;
-    for (const Vec3& c : b.mesh.vertices) {
-      e.machine_mesh.vertices.push_back(q * c);
+    for (const Vec3& v : e.mesh.vertices) {
+      e.machine_mesh.vertices.push_back(detail::rotate_accurately(to_machine, v));
       mb.extend(e.machine_mesh.vertices.back());
     }
     const Vec3 shift = -mb.min;
     for (Vec3& v : e.machine_mesh.vertices) v += shift;
     e.machine_transform.setIdentity();
-    e.machine_transform.topLeftCorner<3, 3>() = q * result.rotation;
+    e.machine_transform.topLeftCorner<3, 3>() = to_machine;
     e.machine_transform.topRightCorner<3, 1>() = shift;
     e.height = mb.max.z() - mb.min.z();
     double lo = std::numeric_limits<double>::infinity();
@@ -88,7 +76,7 @@ std::vector<ExportedBlock> make_exported_blocks(const Mesh& input, const Decompo
       e.bbox.extend(v);
     }
     e.base_offset = lo;
-    e.volume = signed_volume(b.mesh);
+    e.volume = signed_volume(e.mesh);
     out.push_back(std::move(e));
   }
   return out;
@@ -147,9 +135,11 @@ std::string decomposition_json(const Mesh& input, const DecomposeResult& result,
   return doc.dump(2) + "\n";
 }
 
-void export_decomposition(const Mesh& input, const DecomposeResult& result, const ExportInfo& info,
-                          const std::filesystem::path& outdir) {
+std::vector<ExportedBlock> export_decomposition(const Mesh& input, const DecomposeResult& result,
+                                                const ExportInfo& info, const std::filesystem::path& outdir) {
   namespace fs = std::filesystem;
+  // Finish the blocks first: a block that cannot be made valid leaves the folder untouched.
+  std::vector<ExportedBlock> blocks = make_exported_blocks(input, result, info.options.progress);
   std::error_code ec;
   for (const char* sub : {"blocks", "mill"}) {
     fs::create_directories(outdir / sub, ec);
@@ -160,7 +150,6 @@ void export_decomposition(const Mesh& input, const DecomposeResult& result, cons
       if (name.rfind("block_", 0) == 0) fs::remove(entry.path(), ec);
     }
   }
-  const std::vector<ExportedBlock> blocks = make_exported_blocks(input, result);
   for (std::size_t i = 0; i < blocks.size(); ++i) {
     write_mesh(blocks[i].mesh, outdir / block_file("blocks", i, "obj"));
     write_mesh(blocks[i].machine_mesh, outdir / block_file("mill", i, "stl"));
@@ -170,6 +159,7 @@ void export_decomposition(const Mesh& input, const DecomposeResult& result, cons
   if (!out) throw IoError(json_path.string() + ": cannot write");
   out << decomposition_json(input, result, blocks, info);
   if (!out) throw IoError(json_path.string() + ": write failed (disk full?)");
+  return blocks;
 }
 
 }  // namespace subfab

@@ -48,11 +48,14 @@ struct ExportedBlock {
 //! determinant +1): machine = axis_to_machine(axis) x canonical + shift.
 Eigen::Matrix3d axis_to_machine(Axis axis);
 
-//! Builds the exported blocks from a decomposition: block vertices that are
-//! input vertices get the input's exact coordinates back; the others are
-//! rotated back (rotation^T x canonical). Machine meshes are made from the
-//! canonical coordinates (an exact permutation, then a shift).
-std::vector<ExportedBlock> make_exported_blocks(const Mesh& input, const DecomposeResult& result);
+//! Builds the exported blocks from a decomposition: finalize_blocks() maps
+//! them to the input frame (one rounding), cleans the rounding artefacts and
+//! verifies each block; machine meshes are the final blocks moved by
+//! axis_to_machine(axis) x rotation (each coordinate rounded once), then
+//! shifted so the block's minimum corner is at the origin.
+//! 	hrow AlgorithmError when a block cannot be made valid (see finalize_blocks()).
+std::vector<ExportedBlock> make_exported_blocks(const Mesh& input, const DecomposeResult& result,
+                                                Progress* progress = nullptr);
 
 //! What export_decomposition() writes besides the blocks.
 struct ExportInfo {
@@ -67,8 +70,11 @@ std::string decomposition_json(const Mesh& input, const DecomposeResult& result,
 
 //! Writes OUTDIR/decomposition.json, OUTDIR/blocks/*.obj and OUTDIR/mill/*.stl
 //! (creating the folders; stale block files from an earlier run are removed).
-//! \throw IoError when a file cannot be written.
-void export_decomposition(const Mesh& input, const DecomposeResult& result, const ExportInfo& info,
-                          const std::filesystem::path& outdir);
+//! Progress and cleanup info go to info.options.progress.
+//! \return the exported blocks (make_exported_blocks()), as written
+//! \throw IoError when a file cannot be written; AlgorithmError when a block
+//!        cannot be made valid (nothing is written or removed then).
+std::vector<ExportedBlock> export_decomposition(const Mesh& input, const DecomposeResult& result,
+                                                const ExportInfo& info, const std::filesystem::path& outdir);
 
 }  // namespace subfab
