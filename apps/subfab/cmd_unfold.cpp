@@ -138,7 +138,7 @@ const RegisterCommand kRegisterUnfold({"unfold", 30, [](CLI::App& app) {
       ->check(CLI::PositiveNumber);
   sub->add_option("--min-facet-area", args->min_facet_area,
                   "Facets smaller than this (model units^2) are deleted automatically when the hole can be "
-                  "closed (default: 2 x grid spacing^2; 0 disables)")
+                  "closed (default: 4 x grid spacing^2; 0 disables)")
       ->check(CLI::NonNegativeNumber);
   sub->add_option("--delete-facets", args->delete_facets,
                   "Comma-separated facet ids to delete as well, as numbered in the output of the same command "

@@ -375,9 +375,13 @@ class MaskEngine {
     l_.inside[p] ^= 1;
     const long after = local_energy(cubes);
     const bool touches = count_touchings(cubes) > touch_before;
-    const bool faithful = after >= before || touches || fidelity_.allows(l_.inside, {p});
+    // Energy-neutral moves only when they grow the biggest adjacent chart.
+    const bool worse = opt_.neutral_single_point_moves ? after > before : after >= before;
+    const double chart_after = (!worse && after == before && !touches) ? largest_adjacent_chart(cubes) : 0;
+    const bool faithful = worse || touches || fidelity_.allows(l_.inside, {p});
     l_.inside[p] ^= 1;
-    if (after >= before || touches) return false;
+    if (worse || touches) return false;
+    if (after == before && !(chart_after > largest_adjacent_chart(cubes))) return false;
     if (!faithful) {
       ++result.num_rejected_fidelity;
       return false;

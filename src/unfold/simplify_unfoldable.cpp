@@ -45,7 +45,7 @@ SimplifyUnfoldableResult simplify_unfoldable(const Mesh& mesh, const SimplifyUnf
   // Stage 5: automatic deletion, then the ids the user gave (numbered as in
   // the output of a run without them).
   const double s = result.spacing;
-  result.min_facet_area = options.min_facet_area < 0 ? 2.0 * s * s : options.min_facet_area;
+  result.min_facet_area = options.min_facet_area < 0 ? 4.0 * s * s : options.min_facet_area;
   DeleteFacetsResult deleted = delete_facets(poly, {.min_facet_area = result.min_facet_area,
                                                     .facet_ids = {},
                                                     .grid_origin = result.origin,
@@ -53,7 +53,7 @@ SimplifyUnfoldableResult simplify_unfoldable(const Mesh& mesh, const SimplifyUnf
                                                     .max_extension = 1.5 * s,
                                                     .reference = &mesh,
                                                     .max_distance_to_reference = 1.5 * s,
-                                                    .max_group_size = 2,
+                                                    .max_group_size = 4,
                                                     .progress = progress});
   result.failures = deleted.failures;
   if (!options.delete_facet_ids.empty()) {

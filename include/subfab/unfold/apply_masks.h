@@ -27,8 +27,8 @@
 //!         (area, flood fill inside the charts), then smallest dE
 //!       flip it; push every point within 2 of it to the queue
 //!     if no mask applies: flip `a` alone if that is simple, keeps the
-//!       fidelity band and lowers E (single_point_moves; our addition, not
-//!       in the thesis)
+//!       fidelity band and lowers E, or keeps E and grows the biggest
+//!       adjacent chart (single_point_moves; our addition, not in the thesis)
 //! The marching-cubes triangles of a cube are a function of its 8 signs, so
 //! a flip changes only the 8 cubes around each flipped point: E, the charts
 //! around them and the validity checks are all evaluated on those cubes and
@@ -54,6 +54,8 @@ struct MaskOptions {
   int chart_probe_triangles = 128;  // flood-fill cap (triangles) when measuring a chart's area
   bool single_point_moves = true;   // after the catalogue, also flip a lone surface point when
                                     // that strictly lowers the local energy (not in the thesis)
+  bool neutral_single_point_moves = true;  // single-point moves also when the energy stays the same
+                                           // and the biggest adjacent chart grows (not in the thesis)
   //! The input surface (model units, same frame as the lattice); when given,
   //! no move may leave a point of it farther than fidelity_radius from the
   //! surface (fidelity band). Null: only the point band applies.

@@ -28,7 +28,7 @@ namespace subfab {
 struct SimplifyUnfoldableOptions {
   double granularity = 2.0;  // grid spacing = average edge length x granularity (> 0)
   //! Facets smaller than this are deleted automatically (model units^2);
-  //! < 0: 2 x spacing^2 (two grid cells); 0: no automatic deletion.
+  //! < 0: 4 x spacing^2 (four grid cells); 0: no automatic deletion.
   double min_facet_area = -1;
   //! Facet ids to delete as well, numbered as in the result of the same call
   //! without them (after the automatic deletion); adjacent ids go together.
