@@ -112,6 +112,7 @@ int run_unfold(const UnfoldArgs& args) {
     j["hausdorff_over_spacing"] = result.spacing > 0 ? s.hausdorff / result.spacing : 0.0;
     j["hausdorff_after_masks"] = result.hausdorff_after_masks;
     j["refold_error"] = result.refold_error;
+    j["diagonal"] = bounding_box(mesh).diagonal();
     j["deletions_refused"] = result.failures.size();
     std::cout << j.dump(2) << "\n";
   } else if (!args.common.quiet) {
