@@ -3,10 +3,12 @@
 
 #include <chrono>
 #include <cmath>
+#include <sstream>
 #include <string>
 
 #include "subfab/core/error.h"
 #include "subfab/decompose/compute_field.h"
+#include "subfab/decompose/find_infeasible_features.h"
 #include "subfab/decompose/grow_boxes.h"
 #include "subfab/decompose/merge_blocks.h"
 #include "subfab/decompose/orient_mesh.h"
@@ -33,6 +35,32 @@ void check_options(const DecomposeOptions& o) {
   if (!(o.cover_time_limit_s > 0)) throw InvalidArgumentError("the cover time limit must be positive");
 }
 
+//! The early-failure message: what, where (input coordinates), why, what to do.
+std::string infeasible_message(const FeasibilityResult& infeasible, const Mesh& input, bool oriented) {
+  std::ostringstream msg;
+  msg << "no exact height-field decomposition exists in " << (oriented ? "any orientation tried" : "the input frame")
+      << ": " << infeasible.num_edges << " crease edge(s) and " << infeasible.num_vertices
+      << " corner vertex(es) cannot be covered by any axis-aligned height-field block, however finely the mesh is "
+         "refined one-to-four ("
+      << describe_infeasible_features(infeasible, input, 3)
+      << "; input coordinates";
+  if (infeasible.num_splittable_vertices > 0)
+    msg << "; " << infeasible.num_splittable_vertices
+        << " of the vertices would become coverable if the triangles there were split along the coordinate "
+           "planes through the vertex, which the local refinement does not do";
+  msg << "). At a crease the two faces have no common milling axis among +-x, +-y, +-z (each "
+         "faces away from every axis the other faces) and every block holding the edge also holds both faces; at a "
+         "corner every block holding a face's tip also meets a face of the same vertex that faces away from that "
+         "block's axis (a thin spike or cone tip no axis sees). ";
+  if (oriented)
+    msg << "Try --no-orient (the input frame may be free of them), turn the model so that such creases lie in "
+           "axis-aligned planes, or smooth/remesh the model there.";
+  else
+    msg << "Try without --no-orient (another orientation may be free of them), turn the model so that such "
+           "creases lie in axis-aligned planes, or smooth/remesh the model there.";
+  return msg.str();
+}
+
 }  // namespace
 
 DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
@@ -49,14 +77,19 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
   {
     StageScope stage(progress, "orient");
     const auto t = Clock::now();
+    FeasibilityResult infeasible;
     if (options.orient) {
       OrientOptions o;
       o.progress = progress;
-      result.rotation = orient_mesh(input, o).rotation;
+      OrientResult oriented = orient_mesh(input, o);
+      result.rotation = oriented.rotation;
+      infeasible = std::move(oriented.infeasible);
     }
-    result.canonical = input;
-    if (!result.rotation.isIdentity(0.0)) transform_mesh(result.canonical, result.rotation, Vec3::Zero());
+    result.canonical = rotate_into_frame(input, result.rotation, OrientOptions{}.snap_tolerance);
+    if (!options.orient) infeasible = find_infeasible_features(result.canonical);
     result.timings.orient = seconds_since(t);
+    // Fail before the expensive stages when no refinement can ever cover the surface.
+    if (!infeasible.feasible()) throw AlgorithmError(infeasible_message(infeasible, input, options.orient));
   }
 
   // 2. fields (4.3.2)

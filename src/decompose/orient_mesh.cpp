@@ -7,9 +7,11 @@
 #include <array>
 #include <cmath>
 #include <numeric>
+#include <optional>
 #include <sstream>
 #include <vector>
 
+#include "decompose/exact_normal_signs.h"
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
 
@@ -17,9 +19,6 @@ namespace subfab {
 namespace {
 
 using Matrix3Xd = Eigen::Matrix<double, 3, Eigen::Dynamic>;
-
-//! Number of candidates refined on the exact energy (after refinement on clustered normals).
-constexpr std::size_t kNumExactRefined = 3;
 
 //! Area-weighted normals (A_f n_f = half the cross product), one column per face.
 Matrix3Xd weighted_normals(const Mesh& mesh) {
@@ -222,6 +221,35 @@ Eigen::Matrix3d orthonormalize(const Eigen::Matrix3d& r) {
 
 }  // namespace
 
+Mesh rotate_into_frame(const Mesh& mesh, const Eigen::Matrix3d& rotation, double snap_tolerance) {
+  if (rotation.isIdentity(0.0)) return mesh;
+  Mesh turned = mesh;
+  transform_mesh(turned, rotation, Vec3::Zero());
+  const double tolerance = snap_tolerance * bounding_box(turned).diagonal();
+  if (!(tolerance > 0) || turned.vertices.empty()) return turned;
+  Mesh snapped = turned;
+  std::vector<std::size_t> order(snapped.vertices.size());
+  for (int k = 0; k < 3; ++k) {
+    std::iota(order.begin(), order.end(), 0);
+    const auto coord = [&](std::size_t v) { return snapped.vertices[v][k]; };
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return coord(a) < coord(b); });
+    for (std::size_t i = 0; i < order.size();) {
+      std::size_t j = i + 1;
+      while (j < order.size() && coord(order[j]) - coord(order[j - 1]) <= tolerance) ++j;
+      if (j - i > 1) {
+        const double median = coord(order[i + (j - i) / 2]);
+        for (std::size_t m = i; m < j; ++m) snapped.vertices[order[m]][k] = median;
+      }
+      i = j;
+    }
+  }
+  const auto before = detail::exact_normal_signs(turned);
+  const auto after = detail::exact_normal_signs(snapped);
+  for (std::size_t f = 0; f < after.size(); ++f)
+    if (after[f] == std::array<std::int8_t, 3>{0, 0, 0} && before[f] != after[f]) return turned;
+  return snapped;
+}
+
 double orientation_energy(const Mesh& mesh, const Eigen::Matrix3d& rotation) {
   const Matrix3Xd w = weighted_normals(mesh);
   const double area = w.colwise().norm().sum();
@@ -231,10 +259,11 @@ double orientation_energy(const Mesh& mesh, const Eigen::Matrix3d& rotation) {
 
 OrientResult orient_mesh(const Mesh& mesh, const OrientOptions& options) {
   if (options.num_directions < 1 || options.num_twists < 1 || options.num_refined < 0 || !(options.tolerance > 0) ||
-      !(options.keep_frame_area >= 0) || !(options.keep_frame_tolerance >= 0) || !(options.min_relative_gain >= 0))
+      !(options.keep_frame_area >= 0) || !(options.snap_tolerance >= 0) || !(options.keep_frame_tolerance >= 0) || !(options.min_relative_gain >= 0) ||
+      options.num_candidates < 1)
     throw InvalidArgumentError(
         "orientation options: num_directions and num_twists must be >= 1, num_refined >= 0, tolerance > 0, "
-        "keep_frame_area, keep_frame_tolerance and min_relative_gain >= 0");
+        "keep_frame_area, keep_frame_tolerance and min_relative_gain >= 0, num_candidates >= 1");
   if (mesh.empty()) throw InvalidMeshError("cannot orient a mesh with no faces");
   const Matrix3Xd w = weighted_normals(mesh);
   const double area = w.colwise().norm().sum();
@@ -290,7 +319,7 @@ OrientResult orient_mesh(const Mesh& mesh, const OrientOptions& options) {
   std::vector<std::size_t> order(starts.size());
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return rough_energy[a] < rough_energy[b]; });
-  order.resize(std::min<std::size_t>(order.size(), kNumExactRefined));
+  order.resize(std::min<std::size_t>(order.size(), static_cast<std::size_t>(options.num_candidates)));
   std::vector<Eigen::Matrix3d> refined(order.size());
   std::vector<double> energies(order.size());
   parallel_for(0, order.size(), [&](std::size_t s) {
@@ -304,16 +333,15 @@ OrientResult orient_mesh(const Mesh& mesh, const OrientOptions& options) {
         e = l1_sum(w, r);
       }
     }
-    refined[s] = r;
-    energies[s] = e;
+    refined[s] = orthonormalize(closest_to_identity(r, symmetries));
+    energies[s] = l1_sum(w, refined[s]);
   });
 
-  // 4. Best energy; among near ties, the frame closest to the identity.
+  // 4. Candidates: the input frame and the distinct local optima (several
+  //    starts may converge to the same frame), in preference order.
   const double energy_identity = l1_sum(w, Eigen::Matrix3d::Identity());
   double best_energy = energy_identity;
   for (double e : energies) best_energy = std::min(best_energy, e);
-  OrientResult result;
-  result.energy_before = energy_identity / area;
   // Fraction of the area whose normals are exactly on an axis in the input frame.
   double aligned_area = 0;
   for (Eigen::Index f = 0; f < w.cols(); ++f) {
@@ -322,30 +350,77 @@ OrientResult orient_mesh(const Mesh& mesh, const OrientOptions& options) {
   }
   const bool axis_aligned_input = aligned_area >= options.keep_frame_area * area &&
                                   energy_identity <= best_energy * (1 + options.keep_frame_tolerance);
-  const bool negligible_gain = energy_identity <= best_energy * (1 + std::max(1e-9, options.min_relative_gain));
-  if (negligible_gain || axis_aligned_input) {
-    result.rotation = Eigen::Matrix3d::Identity();
-    result.energy_after = result.energy_before;
-  } else {
-    double best_trace = -INFINITY;
-    for (std::size_t s = 0; s < refined.size(); ++s) {
-      if (energies[s] > best_energy * (1 + 1e-9)) continue;
-      const Eigen::Matrix3d r = orthonormalize(closest_to_identity(refined[s], symmetries));
-      if (r.trace() > best_trace + 1e-12) {
-        best_trace = r.trace();
-        result.rotation = r;
-      }
-    }
-    result.energy_after = l1_sum(w, result.rotation) / area;
-    if (result.energy_after > result.energy_before) {  // rounding of the final rotation: keep the input frame
-      result.rotation = Eigen::Matrix3d::Identity();
-      result.energy_after = result.energy_before;
-    }
+  struct Ranked {
+    OrientCandidate candidate;
+    double key;  // preference: smaller first
+  };
+  std::vector<Ranked> ranked_candidates;
+  {
+    OrientCandidate input;
+    input.input_frame = true;
+    input.energy = energy_identity / area;
+    const double key = axis_aligned_input ? -INFINITY : energy_identity / (1 + std::max(1e-9, options.min_relative_gain));
+    ranked_candidates.push_back({input, key});
   }
+  std::vector<std::size_t> by_energy(refined.size());
+  std::iota(by_energy.begin(), by_energy.end(), 0);
+  std::stable_sort(by_energy.begin(), by_energy.end(), [&](std::size_t a, std::size_t b) { return energies[a] < energies[b]; });
+  // Starts converging to the same optimum stop at slightly different places
+  // (E is flat along some directions): frames within half a degree modulo
+  // symmetry are one candidate, the lower-energy one kept.
+  const double same_frame = 1.0 + 2.0 * std::cos(0.5 * M_PI / 180.0);
+  for (std::size_t s : by_energy) {
+    if (refined[s].isIdentity(0.0)) continue;  // the input frame is already a candidate
+    bool distinct = true;
+    for (std::size_t k = 1; k < ranked_candidates.size(); ++k)
+      distinct = distinct && symmetric_similarity(refined[s], ranked_candidates[k].candidate.rotation, symmetries) < same_frame;
+    if (!distinct) continue;
+    OrientCandidate c;
+    c.rotation = refined[s];
+    c.energy = energies[s] / area;
+    ranked_candidates.push_back({c, energies[s]});
+  }
+  std::stable_sort(ranked_candidates.begin(), ranked_candidates.end(),
+                   [](const Ranked& a, const Ranked& b) { return a.key < b.key; });
+
+  // 5. The first candidate without infeasible features; else the fewest.
+  OrientResult result;
+  result.energy_before = energy_identity / area;
+  for (const Ranked& r : ranked_candidates) result.candidates.push_back(r.candidate);
+  std::vector<FeasibilityResult> checks(result.candidates.size());
+  if (options.check_feasibility) {
+    std::optional<std::size_t> feasible;
+    for (std::size_t c = 0; c < result.candidates.size() && !feasible; ++c) {
+      const Mesh turned = result.candidates[c].input_frame
+                              ? mesh
+                              : rotate_into_frame(mesh, result.candidates[c].rotation, options.snap_tolerance);
+      checks[c] = find_infeasible_features(turned);
+      result.candidates[c].num_infeasible = static_cast<long>(checks[c].size());
+      if (checks[c].feasible()) feasible = c;
+    }
+    if (feasible) {
+      result.chosen = *feasible;
+      result.num_rejected = *feasible;
+    } else {
+      for (std::size_t c = 1; c < result.candidates.size(); ++c)
+        if (checks[c].size() < checks[result.chosen].size()) result.chosen = c;
+      result.num_rejected = result.candidates.size();
+    }
+    result.infeasible = std::move(checks[result.chosen]);
+  }
+  const OrientCandidate& chosen = result.candidates[result.chosen];
+  result.rotation = chosen.input_frame ? Eigen::Matrix3d::Identity() : chosen.rotation;
+  result.energy_after = chosen.energy;
   if (options.progress) {
     std::ostringstream msg;
-    msg << "orientation energy " << result.energy_before << " -> " << result.energy_after << " (" << num_candidates
-        << " coarse candidates, " << starts.size() << " refined)";
+    msg << "orientation energy " << result.energy_before << " -> " << result.energy_after << " ("
+        << (chosen.input_frame ? "input frame" : "turned") << "; " << num_candidates << " coarse candidates, "
+        << starts.size() << " refined, " << result.candidates.size() << " candidate frames";
+    if (options.check_feasibility) {
+      msg << ", " << result.num_rejected << " rejected for creases or corners no axis-aligned block can cover";
+      if (!result.infeasible.feasible()) msg << "; none is free of them, the fewest kept";
+    }
+    msg << ")";
     options.progress->info(msg.str());
   }
   return result;

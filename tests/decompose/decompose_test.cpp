@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -57,6 +58,36 @@ TEST(Decompose, LShapeIsValid) {
   EXPECT_GE(r.blocks.size(), 1u);
   EXPECT_LE(r.blocks.size(), 2u);
   expect_valid(l, r, r.max_height);
+}
+
+//! Records the stages begun.
+struct RecordingProgress : Progress {
+  std::vector<std::string> stages;
+  void begin_stage(std::string_view name) override { stages.emplace_back(name); }
+};
+
+// A crease no axis-aligned block can ever hold (both faces hang below the
+// edge (0,0,0)-(1,1,0), normals of opposite signs in x, y and z): decompose
+// fails at once, before the field and grow stages, naming the edge.
+TEST(Decompose, FailsEarlyOnAnImpossibleCrease) {
+  Mesh wedge;
+  wedge.vertices = {Vec3(0, 0, 0), Vec3(1, 1, 0), Vec3(0.6, 0.4, -1), Vec3(0.7, 0.3, -1)};
+  wedge.faces = {{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}};
+  RecordingProgress progress;
+  DecomposeOptions o;
+  o.orient = false;
+  o.progress = &progress;
+  try {
+    decompose(wedge, o);
+    FAIL() << "expected an AlgorithmError";
+  } catch (const AlgorithmError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("crease edge"), std::string::npos) << what;
+    EXPECT_NE(what.find("edge (0 0 0)-(1 1 0)"), std::string::npos) << what;
+    EXPECT_NE(what.find("without --no-orient"), std::string::npos) << what;
+  }
+  EXPECT_EQ(std::count(progress.stages.begin(), progress.stages.end(), "field"), 0);
+  EXPECT_EQ(std::count(progress.stages.begin(), progress.stages.end(), "grow"), 0);
 }
 
 class DecomposeRealModel : public ::testing::TestWithParam<const char*> {};

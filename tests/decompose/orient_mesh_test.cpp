@@ -4,9 +4,11 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
+#include "subfab/decompose/find_infeasible_features.h"
 #include "subfab/mesh/read_mesh.h"
 #include "decompose/box_shapes.h"
 #include "test_support.h"
@@ -88,6 +90,8 @@ TEST(OrientMesh, NeverWorseThanIdentityAndDeterministic) {
     expect_proper_rotation(a.rotation);
     EXPECT_LE(a.energy_after, a.energy_before) << name;
     EXPECT_NEAR(a.energy_before, orientation_energy(mesh, Eigen::Matrix3d::Identity()), 1e-14);
+    EXPECT_NEAR(a.energy_after, orientation_energy(mesh, a.rotation), 1e-14);
+    ASSERT_FALSE(a.candidates[a.chosen].input_frame) << name;
     // A local check of optimality: no small turn about any axis improves it.
     for (int axis = 0; axis < 3; ++axis)
       for (double angle : {-1e-3, 1e-3, -2e-2, 2e-2}) {
@@ -118,7 +122,8 @@ TEST(OrientMesh, AtLeastAsGoodAsTheZAxisOnlySearch) {
       const Eigen::Matrix3d rot = Eigen::Quaterniond::FromTwoVectors(d, Vec3::UnitZ()).toRotationMatrix();
       best_z_only = std::min(best_z_only, orientation_energy(mesh, rot));
     }
-    const OrientResult ours = orient_mesh(mesh);
+    // The search itself (no preference for the input frame, no feasibility check).
+    const OrientResult ours = orient_mesh(mesh, {.min_relative_gain = 0, .check_feasibility = false});
     EXPECT_LE(ours.energy_after, best_z_only) << name;
   }
 }
@@ -136,9 +141,103 @@ TEST(OrientMesh, NegligibleGainKeepsTheInputFrame) {
   EXPECT_GT(pure.energy_after, kept.energy_after * (1 - 1e-3));
 }
 
+// A box turned by 1e-4 radians: turning it back lowers E by only about 1e-4
+// (relative), far below min_relative_gain, so the input frame ranks first.
+// But in its own frame the box cannot be decomposed exactly: at two corners a
+// face's corner straddles a coordinate plane (its tilt), so every box holding
+// that corner holds the neighbouring faces too (grow_boxes gave up there after
+// 8 rounds of refinement). The turned-back frame, with the rounding of the
+// turn snapped away, is an exact box: chosen.
+TEST(OrientMesh, SlightlyTurnedBoxIsTurnedBackWhenItsFrameIsInfeasible) {
+  const Eigen::Matrix3d tilt = Eigen::AngleAxisd(1e-4, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+  Mesh turned = box_mesh(Vec3(-1, -0.5, -2), Vec3(1, 0.5, 2));
+  transform_mesh(turned, tilt, Vec3::Zero());
+  const OrientResult r = orient_mesh(turned);
+  ASSERT_GE(r.candidates.size(), 2u);
+  EXPECT_TRUE(r.candidates[0].input_frame);
+  EXPECT_EQ(r.candidates[0].num_infeasible, 2);
+  EXPECT_EQ(r.chosen, 1u);
+  EXPECT_EQ(r.num_rejected, 1u);
+  EXPECT_TRUE(r.infeasible.feasible());
+  EXPECT_LT(r.energy_after, r.energy_before);
+  EXPECT_GT(r.energy_after, r.energy_before * (1 - 1e-3));
+  EXPECT_NEAR(r.energy_after, 1.0, 1e-9);
+  // rotation * tilt is (about) a signed permutation, and the snapped mesh is an exact box.
+  const Eigen::Matrix3d p = r.rotation * tilt;
+  EXPECT_NEAR(p.cwiseAbs().rowwise().maxCoeff().minCoeff(), 1.0, 1e-8);
+  const Mesh back = rotate_into_frame(turned, r.rotation, OrientOptions{}.snap_tolerance);
+  for (int k = 0; k < 3; ++k) {
+    std::vector<double> values;
+    for (const Vec3& v : back.vertices) values.push_back(v[k]);
+    std::sort(values.begin(), values.end());
+    EXPECT_EQ(std::unique(values.begin(), values.end()) - values.begin(), 2) << "axis " << k;
+  }
+  EXPECT_TRUE(find_infeasible_features(back).feasible());
+  // Without the feasibility check the input frame is kept, exactly.
+  const OrientResult kept = orient_mesh(turned, {.check_feasibility = false});
+  EXPECT_EQ(kept.rotation, Eigen::Matrix3d::Identity());
+}
+
+TEST(RotateIntoFrame, IdentityIsBitForBitAndSnappingKeepsIds) {
+  const Mesh box = box_mesh(Vec3(0, 0, 0), Vec3(1, 2, 3));
+  const Mesh same = rotate_into_frame(box, Eigen::Matrix3d::Identity(), 1e-9);
+  EXPECT_EQ(same.vertices, box.vertices);
+  EXPECT_EQ(same.faces, box.faces);
+  // A turn by 90 degrees about z (exactly representable up to cos rounding):
+  // coordinates come out exact after snapping.
+  const Eigen::Matrix3d quarter = Eigen::AngleAxisd(M_PI / 2, Vec3::UnitZ()).toRotationMatrix();
+  const Mesh q = rotate_into_frame(box, quarter, 1e-9);
+  EXPECT_EQ(q.faces, box.faces);
+  for (std::size_t v = 0; v < box.vertices.size(); ++v)
+    EXPECT_NEAR((q.vertices[v] - quarter * box.vertices[v]).norm(), 0.0, 1e-12);
+  for (int k = 0; k < 3; ++k) {  // two values per axis: every face exactly axis-aligned
+    std::vector<double> values;
+    for (const Vec3& v : q.vertices) values.push_back(v[k]);
+    std::sort(values.begin(), values.end());
+    EXPECT_EQ(std::unique(values.begin(), values.end()) - values.begin(), 2) << "axis " << k;
+  }
+  EXPECT_TRUE(find_infeasible_features(q).feasible());
+}
+
+// Modelled in its axes, with a slanted face: the identity, exactly.
+TEST(OrientMesh, AxisAlignedShapesKeepTheIdentityExactly) {
+  Mesh tet;
+  tet.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
+  tet.faces = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  for (const Mesh& m : {tet, test::make_l_shape(), test::make_t_shape()}) {
+    const OrientResult r = orient_mesh(m);
+    EXPECT_EQ(r.rotation, Eigen::Matrix3d::Identity());
+    EXPECT_EQ(r.energy_after, r.energy_before);
+    EXPECT_TRUE(r.infeasible.feasible());
+  }
+}
+
+// bunny_lowres: the energy optimum (5.8 degrees away, 0.12% lower) has a cone
+// tip no axis-aligned block can cover (grow failed there); the input frame is
+// preferred and feasible. Asked for the pure minimum, the optimum is
+// rejected for that vertex and a feasible frame is chosen.
+TEST(OrientMesh, PrefersFeasibleFrames) {
+  const Mesh bunny = read_mesh(test::data_path("bunny_lowres.off"));
+  const OrientResult r = orient_mesh(bunny);
+  EXPECT_EQ(r.rotation, Eigen::Matrix3d::Identity());
+  EXPECT_TRUE(r.infeasible.feasible());
+  const OrientResult pure = orient_mesh(bunny, {.min_relative_gain = 0});
+  ASSERT_GE(pure.candidates.size(), 2u);
+  EXPECT_FALSE(pure.candidates[0].input_frame);
+  EXPECT_GT(pure.candidates[0].num_infeasible, 0);
+  EXPECT_GE(pure.num_rejected, 1u);
+  EXPECT_EQ(pure.candidates[pure.chosen].num_infeasible, 0);
+  EXPECT_TRUE(pure.infeasible.feasible());
+  for (std::size_t c = 0; c < pure.chosen; ++c) EXPECT_GT(pure.candidates[c].num_infeasible, 0);
+  for (std::size_t c = 1; c < pure.candidates.size(); ++c)
+    if (!pure.candidates[c].input_frame && !pure.candidates[c - 1].input_frame)
+      EXPECT_LE(pure.candidates[c - 1].energy, pure.candidates[c].energy);
+}
+
 TEST(OrientMesh, RejectsUnusableInput) {
   EXPECT_THROW(orient_mesh(Mesh{}), InvalidMeshError);
   EXPECT_THROW(orient_mesh(box_mesh(Vec3(0, 0, 0), Vec3(1, 1, 1)), {.num_twists = 0}), InvalidArgumentError);
+  EXPECT_THROW(orient_mesh(box_mesh(Vec3(0, 0, 0), Vec3(1, 1, 1)), {.num_candidates = 0}), InvalidArgumentError);
 }
 
 }  // namespace

@@ -43,7 +43,7 @@ struct DecomposeTimings {
 //! Result of decompose().
 struct DecomposeResult {
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  // canonical = rotation x input
-  Mesh canonical;            // the (possibly locally refined) input in the canonical frame
+  Mesh canonical;            // the (possibly locally refined) input in the canonical frame (rotate_into_frame: turned, near-equal coordinates snapped)
   std::size_t num_input_vertices = 0;  // canonical vertices [0, this) are the input's vertices, same ids
   double max_height = std::numeric_limits<double>::infinity();  // the height limit used (model units)
   std::vector<Block> blocks; // the blocks, canonical frame
