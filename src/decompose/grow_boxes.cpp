@@ -102,8 +102,8 @@ class Grower {
   }
 
   //! The grown box for seed `face` and `axis`, or nullopt if no valid box
-  //! for that axis covers the face.
-  std::optional<Box3> grow(int face, Axis axis) const {
+  //! for that axis covers the face. `strategy` picks which maximal box.
+  std::optional<Box3> grow(int face, Axis axis, GrowStrategy strategy) const {
     if (index_.facing_sign(face, axis) < 0) return std::nullopt;
     Box3 b = index_.face_box(face);
     if (!limits_.fits(b, axis)) return std::nullopt;
@@ -128,8 +128,55 @@ class Grower {
       if (target == cur) continue;
       if (!move(b, axis, dim, side, target)) frozen[static_cast<std::size_t>(s)] = true;
     }
-    // 3. Greedy growth: move the side whose next plane holds the most Good
-    //    points (Appendix B's objective, minimised one plane at a time).
+    if (strategy != GrowStrategy::Greedy) {
+      grow_round_robin(b, axis, frozen, strategy == GrowStrategy::AcrossFirst);
+    } else {
+      grow_greedy(b, axis, frozen);
+    }
+    // 4. Make the box maximal: push every side to first contact (or the
+    //    size limit / grid domain), the sides across the axis first; then
+    //    no side can move without breaking validity or a limit.
+    if (maximal_) {
+      const int ad = axis_dimension(axis);
+      for (int k = 1; k <= 3; ++k) {
+        const int dim = (ad + k) % 3;
+        for (int side : {+1, -1}) move(b, axis, dim, side, side > 0 ? domain_.max[dim] : domain_.min[dim]);
+      }
+    }
+    if (!index_.face_covered(face, b, axis)) return std::nullopt;
+    shrink_to_coverage(b, axis);
+    return b;
+  }
+
+ private:
+  //! Round-robin growth: every unfrozen side in turn moves out by one grid
+  //! plane (exactly limited by first contact), until all are blocked; with
+  //! `across_first`, the four sides across the axis grow to contact first,
+  //! then the two along it. Balanced boxes: wide where the shape allows.
+  void grow_round_robin(Box3& b, Axis axis, std::array<bool, 6> frozen, bool across_first) const {
+    const int ad = axis_dimension(axis);
+    for (int phase = across_first ? 0 : 1; phase < 2; ++phase) {
+      for (bool moved = true; moved;) {
+        moved = false;
+        for (int s = 0; s < 6; ++s) {
+          const int dim = s / 2, side = (s % 2) ? +1 : -1;
+          if (frozen[static_cast<std::size_t>(s)] || (phase == 0 && dim == ad)) continue;
+          const double cur = side > 0 ? b.max[dim] : b.min[dim];
+          const double target = limits_.clamp(b, axis, dim, side, next_plane(dim, side, b));
+          if (target == cur) {
+            frozen[static_cast<std::size_t>(s)] = true;
+            continue;
+          }
+          if (!move(b, axis, dim, side, target)) frozen[static_cast<std::size_t>(s)] = true;
+          moved = moved || (side > 0 ? b.max[dim] : b.min[dim]) != cur;
+        }
+      }
+    }
+  }
+
+  //! Greedy growth: move the side whose next plane holds the most Good
+  //! points (Appendix B's objective, minimised one plane at a time).
+  void grow_greedy(Box3& b, Axis axis, std::array<bool, 6> frozen) const {
     const HeightField& field = fields_[static_cast<std::size_t>(axis_index(axis))];
     for (;;) {
       int best = -1;
@@ -166,22 +213,8 @@ class Grower {
       const int dim = best / 2, side = (best % 2) ? +1 : -1;
       if (!move(b, axis, dim, side, best_target)) frozen[static_cast<std::size_t>(best)] = true;
     }
-    // 4. Make the box maximal: push every side to first contact (or the
-    //    size limit / grid domain), the sides across the axis first; then
-    //    no side can move without breaking validity or a limit.
-    if (maximal_) {
-      const int ad = axis_dimension(axis);
-      for (int k = 1; k <= 3; ++k) {
-        const int dim = (ad + k) % 3;
-        for (int side : {+1, -1}) move(b, axis, dim, side, side > 0 ? domain_.max[dim] : domain_.min[dim]);
-      }
-    }
-    if (!index_.face_covered(face, b, axis)) return std::nullopt;
-    shrink_to_coverage(b, axis);
-    return b;
   }
 
- private:
   //! Next grid plane beyond the side (or the domain bound), size-clamped.
   double next_plane(int dim, int side, const Box3& b) const {
     if (side > 0) {
@@ -197,9 +230,29 @@ class Grower {
   //! Returns true if it reached the target.
   bool move(Box3& b, Axis axis, int dim, int side, double target) const {
     const double clamped = limits_.clamp(b, axis, dim, side, target);
+    Box3 moved = b;
+    (side > 0 ? moved.max[dim] : moved.min[dim]) = clamped;
+    if (grid_says_valid(moved, axis)) {  // same answer as push_face, without the exact queries
+      (side > 0 ? b.max[dim] : b.min[dim]) = clamped;
+      return clamped == target;
+    }
     const double t = index_.push_face(b, axis, dim, side, clamped);
     (side > 0 ? b.max[dim] : b.min[dim]) = t;
     return t == target;
+  }
+
+  //! Sufficient test: the grid points around `b` hold no Forbidden point of
+  //! the axis's field, so no facing-away triangle meets the closed box (see
+  //! compute_field.h). False when unsure (then ask the exact index).
+  bool grid_says_valid(const Box3& b, Axis axis) const {
+    std::array<int, 3> lo{}, hi{};
+    for (int d = 0; d < 3; ++d) {
+      const auto du = static_cast<std::size_t>(d);
+      lo[du] = plane_at_or_below(grid_, d, b.min[d]);
+      hi[du] = plane_at_or_above(grid_, d, b.max[d]);
+      if (!(grid_.coordinate(d, lo[du]) <= b.min[d] && b.max[d] <= grid_.coordinate(d, hi[du]))) return false;
+    }
+    return fields_[static_cast<std::size_t>(axis_index(axis))].count_forbidden(lo, hi) == 0;
   }
 
   //! Moves each side in to the bounding box of the covered faces when no
@@ -211,6 +264,9 @@ class Grower {
       tight.min = tight.min.cwiseMin(index_.face_box(f).min);
       tight.max = tight.max.cwiseMax(index_.face_box(f).max);
     }
+    // Moving a side in never adds a covered face, and a covered face stays
+    // in the closed box; it is lost only if it lies in the side's new plane
+    // with the solid outside: only those faces need the exact test.
     for (int s = 0; s < 6; ++s) {
       const int dim = s / 2;
       Box3 candidate = b;
@@ -219,7 +275,12 @@ class Grower {
       else
         candidate.min[dim] = tight.min[dim];
       if (candidate.min[dim] == b.min[dim] && candidate.max[dim] == b.max[dim]) continue;
-      if (index_.faces_covered(candidate, axis).size() == covered.size()) b = candidate;
+      const double plane = (s % 2) ? candidate.max[dim] : candidate.min[dim];
+      const bool keeps_all = std::all_of(covered.begin(), covered.end(), [&](int f) {
+        const Box3& fb = index_.face_box(f);
+        return !(fb.min[dim] == plane && fb.max[dim] == plane) || index_.face_covered(f, candidate, axis);
+      });
+      if (keeps_all) b = candidate;
     }
   }
 
@@ -308,6 +369,7 @@ void check_options(const GrowOptions& o) {
       throw InvalidArgumentError("machine size must be positive in x, y and z (got " +
                                  std::to_string(o.machine_size[k]) + ")");
   if (o.batch_size < 1) throw InvalidArgumentError("batch size must be at least 1");
+  if (o.strategies.empty()) throw InvalidArgumentError("grow_boxes needs at least one growth strategy");
   if (o.max_refinement_levels < 0) throw InvalidArgumentError("max refinement levels must be >= 0");
 }
 
@@ -340,6 +402,7 @@ GrowResult grow_boxes(const Mesh& mesh, const GrowOptions& options) {
       for (const HeightBox& hb : result.boxes)
         if (index.box_is_valid(hb)) kept.push_back(hb);
       result.boxes = std::move(kept);
+      result.covered.clear();  // recomputed on the final mesh
     }
     std::vector<char> covered(static_cast<std::size_t>(nf), 0);
     std::size_t num_covered = 0;
@@ -390,24 +453,32 @@ GrowResult grow_boxes(const Mesh& mesh, const GrowOptions& options) {
       ++result.num_rounds;
       result.num_seeds += static_cast<int>(batch.size());
       // b. Grow in parallel (one slot per seed).
-      std::vector<std::optional<HeightBox>> grown(batch.size());
-      std::vector<std::vector<int>> grown_cover(batch.size());
+      std::vector<std::vector<HeightBox>> grown(batch.size());
+      std::vector<std::vector<std::vector<int>>> grown_cover(batch.size());
       parallel_for(0, batch.size(), [&](std::size_t i) {
         const int f = batch[i];
         for (Axis a : candidate_axes(index, f)) {
-          if (auto box = grower.grow(f, a)) {
-            grown[i] = HeightBox{*box, a, f};
-            grown_cover[i] = index.faces_covered(*box, a);
-            return;
+          for (GrowStrategy strategy : options.strategies) {
+            const auto box = grower.grow(f, a, strategy);
+            if (!box) continue;
+            const bool duplicate = std::any_of(grown[i].begin(), grown[i].end(), [&](const HeightBox& g) {
+              return g.axis == a && g.box.min == box->min && g.box.max == box->max;
+            });
+            if (duplicate) continue;
+            grown[i].push_back(HeightBox{*box, a, f});
+            grown_cover[i].push_back(index.faces_covered(*box, a));
           }
+          if (!options.all_axes && !grown[i].empty()) return;
         }
       });
       // c. Coverage, in seed order.
       for (std::size_t i = 0; i < batch.size(); ++i) {
-        failed[static_cast<std::size_t>(batch[i])] = grown[i] ? 0 : 1;
-        if (!grown[i]) continue;
-        result.boxes.push_back(*grown[i]);
-        mark(grown_cover[i]);
+        failed[static_cast<std::size_t>(batch[i])] = grown[i].empty() ? 1 : 0;
+        for (std::size_t k = 0; k < grown[i].size(); ++k) {
+          result.boxes.push_back(grown[i][k]);
+          result.covered.push_back(grown_cover[i][k]);  // valid while the mesh is not refined
+          mark(grown_cover[i][k]);
+        }
       }
       if (progress) progress->update(num_covered, static_cast<std::size_t>(nf));
     }
@@ -446,17 +517,27 @@ GrowResult grow_boxes(const Mesh& mesh, const GrowOptions& options) {
 
   // Final coverage lists on the final mesh; identical boxes kept once.
   {
+    const bool lists_current = result.num_refined_faces == 0 && result.covered.size() == result.boxes.size();
     std::vector<HeightBox> unique;
-    for (const HeightBox& hb : result.boxes) {
+    std::vector<std::vector<int>> unique_covered;
+    for (std::size_t i = 0; i < result.boxes.size(); ++i) {
+      const HeightBox& hb = result.boxes[i];
       const bool duplicate = std::any_of(unique.begin(), unique.end(), [&](const HeightBox& u) {
         return u.axis == hb.axis && u.box.min == hb.box.min && u.box.max == hb.box.max;
       });
-      if (!duplicate) unique.push_back(hb);
+      if (duplicate) continue;
+      unique.push_back(hb);
+      if (lists_current) unique_covered.push_back(std::move(result.covered[i]));
     }
     result.boxes = std::move(unique);
-    const SolidIndex index(result.mesh);
-    result.covered.resize(result.boxes.size());
-    parallel_for(0, result.boxes.size(), [&](std::size_t i) { result.covered[i] = index.faces_covered(result.boxes[i]); });
+    if (lists_current) {
+      result.covered = std::move(unique_covered);
+    } else {
+      const SolidIndex index(result.mesh);
+      result.covered.assign(result.boxes.size(), {});
+      parallel_for(0, result.boxes.size(),
+                   [&](std::size_t i) { result.covered[i] = index.faces_covered(result.boxes[i]); });
+    }
   }
   if (progress) {
     std::ostringstream msg;

@@ -167,7 +167,7 @@ class ConflictGraph {
 
   //! Replaces vertex v by boxes `pieces` (sub-boxes of v's box) and computes
   //! their edges against the live boxes that overlapped v.
-  void replace(int v, const std::vector<Box3>& pieces) {
+  void replace(int v, const std::vector<HeightBox>& pieces) {
     const auto vi = static_cast<std::size_t>(v);
     std::vector<int> neighbours;
     for (std::size_t u = 0; u < boxes_.size(); ++u)
@@ -178,14 +178,14 @@ class ConflictGraph {
     in_[vi].clear();
     alive_[vi] = 0;
     std::vector<std::pair<int, int>> pairs;
-    for (const Box3& piece : pieces) {
+    for (const HeightBox& piece : pieces) {
       const int p = static_cast<int>(boxes_.size());
-      boxes_.push_back(HeightBox{piece, boxes_[vi].axis, -1});
+      boxes_.push_back(piece);
       alive_.push_back(1);
       out_.emplace_back();
       in_.emplace_back();
       for (int u : neighbours)
-        if (boxes_[static_cast<std::size_t>(u)].box.overlaps(piece)) pairs.emplace_back(u, p);
+        if (boxes_[static_cast<std::size_t>(u)].box.overlaps(piece.box)) pairs.emplace_back(u, p);
     }
     add_edges_for_pairs(pairs);
   }
@@ -272,6 +272,7 @@ BoxOrderResult order_boxes(std::vector<HeightBox> boxes, const BoxOrderCallbacks
     return it->second;
   };
 
+  const int max_trims = options.max_trims >= 0 ? options.max_trims : 4 * static_cast<int>(graph.num_vertices());
   for (bool first_pass = true;; first_pass = false) {
     const std::vector<int> comp = graph.components();
     // Component sizes; the non-trivial component with the smallest vertex.
@@ -293,6 +294,26 @@ BoxOrderResult order_boxes(std::vector<HeightBox> boxes, const BoxOrderCallbacks
                            " boxes on cycles); raise the split limit or report this model");
 
     const std::vector<int> cycle = shortest_cycle_through(graph, comp, s);
+    if (callbacks.trims && result.num_trims < max_trims) {
+      int best_vertex = -1;
+      BoxTrim best_trim;
+      for (std::size_t k = 0; k < cycle.size(); ++k) {
+        const int a = cycle[k];
+        const int b = cycle[(k + 1) % cycle.size()];
+        for (const BoxTrim& t : callbacks.trims(graph.box(a), graph.box(b)))
+          if (best_vertex < 0 || t.removed < best_trim.removed) {
+            best_vertex = t.which == 0 ? a : b;
+            best_trim = t;
+          }
+      }
+      if (best_vertex >= 0) {
+        const HeightBox trimmed{best_trim.box, graph.box(best_vertex).axis, graph.box(best_vertex).seed_face};
+        if (callbacks.replaced) callbacks.replaced(graph.box(best_vertex), {trimmed});
+        graph.replace(best_vertex, {trimmed});
+        ++result.num_trims;
+        continue;
+      }
+    }
     SplitChoice best;
     for (std::size_t k = 0; k < cycle.size(); ++k) {
       const int a = cycle[k];
@@ -321,12 +342,10 @@ BoxOrderResult order_boxes(std::vector<HeightBox> boxes, const BoxOrderCallbacks
     }
     result.num_dropped_pieces += best.num_dropped;
     droppable_cache.clear();
-    if (callbacks.replaced) {
-      std::vector<HeightBox> kept;
-      for (const Box3& piece : best.kept) kept.push_back(HeightBox{piece, graph.box(best.head).axis, -1});
-      callbacks.replaced(graph.box(best.head), kept);
-    }
-    graph.replace(best.head, best.kept);
+    std::vector<HeightBox> kept;
+    for (const Box3& piece : best.kept) kept.push_back(HeightBox{piece, graph.box(best.head).axis, -1});
+    if (callbacks.replaced) callbacks.replaced(graph.box(best.head), kept);
+    graph.replace(best.head, kept);
     ++result.num_splits;
   }
 

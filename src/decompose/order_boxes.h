@@ -12,7 +12,11 @@
 //!      (Tarjan, recomputed after every split; never all cycles):
 //!        - take the component holding the smallest live vertex id s and a
 //!          shortest cycle through s (BFS inside the component);
-//!        - for every edge a -> b of that cycle, candidate split: B_b minus
+//!        - first, if a trim breaks an edge of the cycle without losing
+//!          surface (callback `trims`: one face of a or b moved inward), the
+//!          one removing the least is applied: no new box (thesis 4.3.4's
+//!          shrinking, aimed at the conflicts; bounded by max_trims);
+//!        - otherwise, for every edge a -> b of that cycle, candidate split: B_b minus
 //!          B_a as at most 6 disjoint sub-boxes of B_b (box_difference, best of
 //!          the 6 cutting orders), minus the droppable pieces; score = size of
 //!          the smallest kept piece; choose the edge with the largest score
@@ -38,6 +42,14 @@
 
 namespace subfab::detail {
 
+//! A way to break one conflict edge without a new box: one of its two
+//! boxes replaced by a sub-box of itself (one face moved inward).
+struct BoxTrim {
+  int which = 0;       // 0: the edge's first box, 1: its second box
+  Box3 box;            // the trimmed box (a sub-box of the old one, positive volume)
+  double removed = 0;  // size lost (the `size` callback's measure), >= 0
+};
+
 //! What order_boxes needs to know about the geometry. All callbacks must be
 //! deterministic and safe to call concurrently.
 struct BoxOrderCallbacks {
@@ -51,6 +63,10 @@ struct BoxOrderCallbacks {
   std::function<bool(const HeightBox& piece, const HeightBox& parent)> droppable;
   //! Told (serially) that `parent` was replaced by `kept`. May be null.
   std::function<void(const HeightBox& parent, const std::vector<HeightBox>& kept)> replaced;
+  //! Trims that break the edge first -> second (the edge is gone with the
+  //! trimmed box, and no surface is lost given the live boxes), smallest
+  //! first preferred. Called serially. Null = never trim (split only).
+  std::function<std::vector<BoxTrim>(const HeightBox& first, const HeightBox& second)> trims;
   //! Deterministic size of the block of a box (>= 0; smaller blocks are
   //! carved first, splits keep the smallest piece large).
   std::function<double(const HeightBox& box)> size;
@@ -59,6 +75,7 @@ struct BoxOrderCallbacks {
 //! Options of order_boxes().
 struct BoxOrderOptions {
   int max_splits = 100000;       // cap on cycle-breaking splits (AlgorithmError beyond it)
+  int max_trims = -1;            // cap on cycle-breaking trims (-1: 4 x the number of boxes); splits after it
   Progress* progress = nullptr;  // stage reporting (nullptr = silent)
 };
 
@@ -66,6 +83,7 @@ struct BoxOrderOptions {
 struct BoxOrderResult {
   std::vector<HeightBox> ordered;      // carve order: ordered[0] is carved first
   int num_splits = 0;                  // boxes replaced by their pieces
+  int num_trims = 0;                   // boxes replaced by a trimmed sub-box (no new box)
   int num_dropped_pieces = 0;          // pieces of splits left out (droppable)
   std::size_t num_initial_edges = 0;   // conflict edges before any split
   std::size_t num_final_edges = 0;     // conflict edges of the final DAG

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <tuple>
@@ -65,6 +66,48 @@ bool carving_conflict(const SolidIndex& index, const HeightBox& first, const Hei
   for (const Box3& support : conflict_support(first, second))
     if (solid_meets_open_box(index, support)) return true;
   return false;
+}
+
+std::vector<BoxTrim> conflict_trims(const SolidIndex& index, const HeightBox& first, const HeightBox& second,
+                                    const std::function<double(const HeightBox&)>& size,
+                                    const std::function<bool(const HeightBox&, const HeightBox&)>& keeps_surface) {
+  std::vector<BoxTrim> trims;
+  if (!carving_conflict(index, first, second)) return trims;
+  for (int which = 0; which < 2; ++which) {
+    const HeightBox& self = which == 0 ? first : second;
+    const Box3& other = which == 0 ? second.box : first.box;
+    auto conflict_with = [&](const Box3& moved) {
+      const HeightBox hb{moved, self.axis, self.seed_face};
+      return which == 0 ? carving_conflict(index, hb, second) : carving_conflict(index, first, hb);
+    };
+    for (int dim = 0; dim < 3; ++dim)
+      for (int side : {-1, +1}) {
+        // Move the face inward, at most until the overlap along dim is gone
+        // (then there is no conflict); bisect for the least move that
+        // breaks the edge (the answer is checked exactly at the end).
+        const double cur = side > 0 ? self.box.max[dim] : self.box.min[dim];
+        const double end = side > 0 ? std::max(self.box.min[dim], other.min[dim])
+                                    : std::min(self.box.max[dim], other.max[dim]);
+        if (side > 0 ? !(end < cur) : !(end > cur)) continue;
+        Box3 moved = self.box;
+        double& face = side > 0 ? moved.max[dim] : moved.min[dim];
+        double bad = cur, good = end;
+        face = good;
+        if (conflict_with(moved)) continue;
+        for (int it = 0; it < 64; ++it) {
+          const double mid = bad + (good - bad) / 2;
+          if (mid == bad || mid == good) break;
+          face = mid;
+          (conflict_with(moved) ? bad : good) = mid;
+        }
+        face = good;
+        if (!(moved.min.array() < moved.max.array()).all()) continue;
+        const HeightBox trimmed{moved, self.axis, self.seed_face};
+        if (conflict_with(moved) || !keeps_surface(self, trimmed)) continue;
+        trims.push_back(BoxTrim{which, moved, std::max(0.0, size(self) - size(trimmed))});
+      }
+  }
+  return trims;
 }
 
 bool split_piece_droppable(const SolidIndex& index, const HeightBox& piece,
@@ -138,6 +181,16 @@ ResolveResult resolve_overlaps(const SolidIndex& index, std::vector<HeightBox> b
     Box3 clipped{b.box.min.cwiseMax(bbox.min), b.box.max.cwiseMin(bbox.max)};
     return clipped.volume();
   };
+  callbacks.trims = [&](const HeightBox& first, const HeightBox& second) {
+    return conflict_trims(index, first, second, callbacks.size, [&](const HeightBox& old_box, const HeightBox& trimmed) {
+      // Every face the box stops covering is covered by another live box.
+      const std::vector<int> before = index.faces_covered(old_box);
+      const std::vector<int> after = index.faces_covered(trimmed);
+      std::vector<int> lost;
+      std::set_difference(before.begin(), before.end(), after.begin(), after.end(), std::back_inserter(lost));
+      return std::all_of(lost.begin(), lost.end(), [&](int f) { return cover_count[static_cast<std::size_t>(f)] >= 2; });
+    });
+  };
   BoxOrderOptions order_options;
   order_options.max_splits = options.max_splits;
   order_options.progress = options.progress;
@@ -146,13 +199,15 @@ ResolveResult resolve_overlaps(const SolidIndex& index, std::vector<HeightBox> b
   ResolveResult result;
   result.ordered = std::move(ordered.ordered);
   result.num_splits = ordered.num_splits;
+  result.num_trims = ordered.num_trims;
   result.num_dropped_pieces = ordered.num_dropped_pieces;
   result.num_conflict_edges = ordered.num_initial_edges;
   result.num_boxes_on_cycles = ordered.num_initial_cyclic;
   if (options.progress)
     options.progress->info("resolve: " + std::to_string(result.num_conflict_edges) + " conflict edges, " +
                            std::to_string(result.num_boxes_on_cycles) + " boxes on cycles, " +
-                           std::to_string(result.num_splits) + " splits, " +
+                           std::to_string(result.num_trims) + " trims, " + std::to_string(result.num_splits) +
+                           " splits, " +
                            std::to_string(result.num_dropped_pieces) + " pieces dropped, " +
                            std::to_string(result.ordered.size()) + " boxes in carve order");
   return result;

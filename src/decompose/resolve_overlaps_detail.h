@@ -6,6 +6,7 @@
 
 #include <functional>
 
+#include "decompose/order_boxes.h"
 #include "decompose/solid_index.h"
 #include "subfab/decompose/resolve_overlaps.h"
 
@@ -18,6 +19,15 @@ namespace subfab::detail {
 //! one side of the triangle, inside the open box), or no triangle does and
 //! its min corner, perturbed into the box, is inside.
 bool carving_conflict(const SolidIndex& index, const HeightBox& first, const HeightBox& second);
+
+//! Trims that break the conflict edge first -> second (empty if there is no
+//! such edge): for each of the 12 faces of the two boxes, the least inward
+//! move (bisection over doubles, the result checked exactly) after which the
+//! edge is gone, kept when `keeps_surface(old, trimmed)` agrees. `removed`
+//! is size(old) - size(trimmed). Trimmed boxes are sub-boxes: still valid.
+std::vector<BoxTrim> conflict_trims(const SolidIndex& index, const HeightBox& first, const HeightBox& second,
+                                    const std::function<double(const HeightBox&)>& size,
+                                    const std::function<bool(const HeightBox&, const HeightBox&)>& keeps_surface);
 
 //! Exact: may a piece of a split be left out without losing surface? True
 //! when its block has no volume (the solid's interior misses the open piece),

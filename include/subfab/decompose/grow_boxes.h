@@ -9,16 +9,19 @@
 //!   2. repeat in rounds until every face is covered:
 //!      a. seeds: up to `batch_size` faces not yet covered, spread over the
 //!         surface (farthest-point order from all previous seeds);
-//!      b. grow every seed in parallel: start from the seed triangle's
-//!         bounding box with the axis closest to its normal (other facing
-//!         axes if that fails); move box faces outward one grid plane at a
-//!         time, always the face whose new plane holds the most Good points
-//!         (the thesis's field integral, minimised greedily), each move
-//!         limited EXACTLY by first contact with a triangle facing away from
-//!         the axis (SolidIndex::push_face) and by the size limits; stop when
-//!         no move gains anything; then push every side to first contact
-//!         (a maximal box); shrink each side back to the covered triangles
-//!         when that loses no coverage;
+//!      b. grow every seed in parallel, along every axis its triangle faces
+//!         (options.all_axes) and with every GrowStrategy (a dense set of
+//!         maximal boxes for the cover to choose from): start from the seed
+//!         triangle's bounding box; move box faces outward one grid plane at
+//!         a time (Greedy: always the face whose new plane holds the most
+//!         Good points, the thesis's field integral minimised greedily, until
+//!         no move gains anything; Balanced / AcrossFirst: every side in
+//!         turn until blocked), each move limited EXACTLY by first contact
+//!         with a triangle facing away from the axis (the grid's Forbidden
+//!         counts accept a move at once when no Forbidden point is near,
+//!         else SolidIndex::push_face) and by the size limits; then push
+//!         every side to first contact (a maximal box); shrink each side
+//!         back to the covered triangles when that loses no coverage;
 //!      c. coverage of the new boxes (exact rule of SolidIndex);
 //!   3. faces no axis can cover (a triangle larger than the local feature
 //!      size: a facing-away triangle crosses its own bounding box) are split
@@ -42,12 +45,23 @@
 
 namespace subfab {
 
+//! Which maximal box a seed grows into (several per seed give the cover a
+//! choice; the thesis computes a dense set of maximal boxes, Section 4.3.2).
+enum class GrowStrategy {
+  Greedy,      // side whose next grid plane holds the most Good points first (App. B objective)
+  Balanced,    // every side one grid plane in turn until all are blocked
+  AcrossFirst, // the four sides across the axis in turn first (wide, shallow), then the two along it
+};
+
 //! Options of grow_boxes().
 struct GrowOptions {
   double grid_factor = 1.0;  // grid spacing = average edge length x grid_factor (> 0); unused when `fields` is given
   double max_height = std::numeric_limits<double>::infinity();  // max box extent along its axis, model units (inf = none)
   Vec3 machine_size = Vec3::Constant(std::numeric_limits<double>::infinity());  // work volume X, Y, Z, model units:
       // box extent along its axis <= Z, the two other extents fit X x Y in either order (inf = none)
+  std::vector<GrowStrategy> strategies{GrowStrategy::Greedy, GrowStrategy::Balanced,
+                                      GrowStrategy::AcrossFirst};  // boxes grown per seed and axis (non-empty)
+  bool all_axes = true;             // grow along every axis the seed faces (false: only the first that works)
   int batch_size = 64;              // seeds grown in parallel per round (results do not depend on threads)
   int max_refinement_levels = 8;    // rounds of local 1-to-4 refinement before giving up
   const std::array<HeightField, 6>* fields = nullptr;  // precomputed fields of `mesh` (nullptr: computed here)

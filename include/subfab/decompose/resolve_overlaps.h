@@ -13,6 +13,9 @@
 //!      R = the open overlap of B1 and B2 across d2 (see conflict_region in
 //!      src/decompose/order_boxes.h for why this is exact for a valid B2);
 //!   2. per strongly connected component, a shortest cycle is broken by
+//!      trimming one of its boxes (one face moved inward just enough to
+//!      remove a conflict edge, when every face it stops covering is covered
+//!      by another live box; the least removed volume first), or else by
 //!      splitting the head b2 of one of its edges b1 -> b2 into sub-boxes of
 //!      B2 \ B1 (sub-boxes of a valid box are valid), choosing the edge whose
 //!      smallest kept piece is largest; a piece is dropped when its block is
@@ -49,6 +52,7 @@ struct ResolveOptions {
 struct ResolveResult {
   std::vector<HeightBox> ordered;         // carve order: ordered[0] is carved first
   int num_splits = 0;                     // boxes replaced by pieces to break cycles
+  int num_trims = 0;                      // boxes trimmed (one face moved inward) to break cycles
   int num_dropped_pieces = 0;             // pieces left out (empty or surface-free blocks)
   std::size_t num_conflict_edges = 0;     // edges of the initial conflict graph
   std::size_t num_boxes_on_cycles = 0;    // boxes in non-trivial strongly connected components at the start
