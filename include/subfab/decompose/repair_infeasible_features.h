@@ -1,0 +1,97 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file repair_infeasible_features.h
+//! Local repair of the features that make an exact height-field box
+//! decomposition impossible in the decomposition frame (thesis Section
+//! 4.3.5: "Faithfulness vs Complexity" trades a small, reported deviation
+//! for a decomposable input; "Initialization constraints" for the 1-to-4
+//! refinement). Unlike the thesis's global low-pass filter, only a small
+//! band around each feature moves.
+//!
+//! A feature is infeasible when refinement can never help (see
+//! src/decompose/local_infeasible_features.h, exact): a crease whose two
+//! sides no axis-aligned direction sees together (normals more than 90
+//! degrees apart, edge in no axis-aligned plane), or a vertex whose
+//! surrounding faces no box corner can separate (a spike or thin cone).
+//!
+//! Outline of repair_infeasible_features():
+//!   1. features = exact local test; none: return the input unchanged;
+//!   2. repeat (at most `max_rounds` times) while features remain:
+//!      a. band = faces within `band_rings` edge rings of the feature
+//!         vertices (one ring more every `widen_every` rounds);
+//!      b. refine the band one-to-four (conforming, refine_mesh) until the
+//!         faces within a few target edges of a feature vertex have their
+//!         longest edge below `edge_length` x bbox diagonal;
+//!      c. Taubin smoothing (uniform weights, lambda, mu) of the band's vertices, the rest
+//!         fixed: each crease becomes a fillet of small creases, each seen by
+//!         an axis, each spike a blunt tip; coordinates shared by a vertex
+//!         and all its neighbours (axis-aligned flats) are kept exactly;
+//!      d. every vertex keeps a reference point on the input surface (its
+//!         input position, or the midpoint of its edge's reference points),
+//!         so max |vertex - reference| bounds the Hausdorff distance; over
+//!         `max_deviation`: AlgorithmError;
+//!      e. features = exact local test on the new mesh;
+//!   3. the result must still be a closed, manifold, outward-oriented,
+//!      non-degenerate, self-intersection-free solid (exact checks), else
+//!      AlgorithmError;
+//!   4. report: features found, vertices moved, Hausdorff distance (CGAL
+//!      bounded-error, between the changed patches and the other mesh) and
+//!      the area-weighted mean distance of the changed surface to the input.
+//! Deterministic, identical for any thread count.
+#pragma once
+
+#include "subfab/core/progress.h"
+#include "subfab/mesh/mesh.h"
+
+namespace subfab {
+
+//! Options of repair_infeasible_features().
+struct RepairOptions {
+  int max_rounds = 40;          // find/refine/smooth rounds before giving up
+  double max_deviation = 0.01;  // cap on the deviation from the input, fraction of the bbox diagonal (> 0)
+  double edge_length = 0.004;   // band faces are refined until their longest edge is below this, fraction of
+                                // the bbox diagonal (> 0); sets the fillet size (a few such lengths)
+  int band_rings = 2;           // edge rings around feature vertices that are refined and smoothed (>= 1)
+  int widen_every = 4;          // the band grows by one ring every this many rounds (>= 1)
+  int smoothing_steps = 10;     // Taubin (lambda, mu) step pairs per round (>= 1)
+  double lambda = 0.5;          // Taubin shrink factor, in (0, 1)
+  double mu = -0.53;            // Taubin inflate factor, < -lambda (no shrinkage, Taubin 1995); 0 = plain Laplacian
+  Progress* progress = nullptr; // info lines (features, rounds, deviation); nullptr = silent
+};
+
+//! What repair_infeasible_features() found and changed.
+struct RepairReport {
+  int num_features = 0;          // infeasible features in the input (creases + vertices)
+  int num_creases = 0;           // of which infeasible crease edges
+  int num_vertices = 0;          // of which infeasible vertices
+  int num_rounds = 0;            // refine/smooth rounds used (0 if nothing to repair)
+  int num_vertices_moved = 0;    // vertices of the result away from their reference point on the input
+  int num_faces_added = 0;       // faces of the result minus faces of the input (local refinement)
+  double bbox_diagonal = 0;      // of the input, model units
+  double max_deviation = 0;      // symmetric Hausdorff distance input <-> result, model units
+  double max_deviation_bound = 0;  // max |vertex - reference|, an upper bound of max_deviation, model units
+  double mean_deviation = 0;     // area-weighted mean distance of the changed surface to the input, model units
+  double max_deviation_fraction() const { return bbox_diagonal > 0 ? max_deviation / bbox_diagonal : 0; }
+  double mean_deviation_fraction() const { return bbox_diagonal > 0 ? mean_deviation / bbox_diagonal : 0; }
+};
+
+//! Result of repair_infeasible_features().
+struct RepairResult {
+  Mesh mesh;           // repaired mesh (same as the input, bit for bit, if it had no infeasible feature):
+                       // input vertices keep their ids, new vertices are appended
+  RepairReport report;
+};
+
+//! Removes every infeasible feature of `mesh` by local refinement and
+//! smoothing (Section 4.3.5, local version; see the file comment).
+//! \param mesh closed, manifold, outward-oriented, self-intersection-free
+//!        triangle mesh IN THE DECOMPOSITION FRAME (after orient: the
+//!        features depend on the frame), model units.
+//! \return the repaired mesh (same frame and units) and the report; after
+//!         it the exact local test finds nothing.
+//! \throw InvalidArgumentError on invalid options.
+//! \throw AlgorithmError naming a feature if it cannot be repaired within
+//!        `max_rounds` and `max_deviation`, or if the repaired mesh would not
+//!        be a valid solid.
+RepairResult repair_infeasible_features(const Mesh& mesh, const RepairOptions& options);
+
+}  // namespace subfab

@@ -1,0 +1,292 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "subfab/decompose/repair_infeasible_features.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "decompose/local_infeasible_features.h"
+#include "decompose/surface_deviation.h"
+#include "subfab/checks/require_closed_solid.h"
+#include "subfab/core/error.h"
+#include "subfab/core/parallel.h"
+#include "subfab/decompose/refine_mesh.h"
+
+namespace subfab {
+namespace {
+
+using detail::LocalInfeasibleFeature;
+
+void check_options(const RepairOptions& o) {
+  auto positive = [](double x) { return x > 0 && std::isfinite(x); };
+  if (o.max_rounds < 0) throw InvalidArgumentError("repair: max_rounds must be >= 0");
+  if (!positive(o.max_deviation))
+    throw InvalidArgumentError("repair: maximum deviation must be a positive fraction of the bbox diagonal (got " +
+                               std::to_string(o.max_deviation) + ")");
+  if (!positive(o.edge_length))
+    throw InvalidArgumentError("repair: edge length must be a positive fraction of the bbox diagonal (got " +
+                               std::to_string(o.edge_length) + ")");
+  if (o.band_rings < 1) throw InvalidArgumentError("repair: band_rings must be >= 1");
+  if (o.widen_every < 1) throw InvalidArgumentError("repair: widen_every must be >= 1");
+  if (o.smoothing_steps < 1) throw InvalidArgumentError("repair: smoothing_steps must be >= 1");
+  if (!(o.lambda > 0 && o.lambda < 1)) throw InvalidArgumentError("repair: Taubin lambda must be in (0, 1)");
+  if (!(o.mu == 0 || (o.mu < -o.lambda && std::isfinite(o.mu))))
+    throw InvalidArgumentError("repair: Taubin mu must be 0 (plain Laplacian) or finite and below -lambda");
+}
+
+//! Vertex neighbours (CSR, sorted, unique).
+struct Neighbours {
+  std::vector<int> start, ids;
+  int begin(int v) const { return start[static_cast<std::size_t>(v)]; }
+  int end(int v) const { return start[static_cast<std::size_t>(v) + 1]; }
+};
+
+Neighbours vertex_neighbours(const Mesh& mesh) {
+  const std::size_t nv = mesh.vertices.size();
+  std::vector<std::vector<int>> lists(nv);
+  for (const Triangle& t : mesh.faces)
+    for (int e = 0; e < 3; ++e) {
+      lists[static_cast<std::size_t>(t[e])].push_back(t[(e + 1) % 3]);
+      lists[static_cast<std::size_t>(t[e])].push_back(t[(e + 2) % 3]);
+    }
+  Neighbours n;
+  n.start.assign(nv + 1, 0);
+  for (std::size_t v = 0; v < nv; ++v) {
+    std::sort(lists[v].begin(), lists[v].end());
+    lists[v].erase(std::unique(lists[v].begin(), lists[v].end()), lists[v].end());
+    n.start[v + 1] = n.start[v] + static_cast<int>(lists[v].size());
+  }
+  n.ids.reserve(static_cast<std::size_t>(n.start[nv]));
+  for (const auto& l : lists) n.ids.insert(n.ids.end(), l.begin(), l.end());
+  return n;
+}
+
+//! Vertices of the features (sorted, unique).
+std::vector<int> feature_vertices(const std::vector<LocalInfeasibleFeature>& features) {
+  std::vector<int> v;
+  for (const auto& f : features) {
+    v.push_back(f.vertex0);
+    if (f.is_crease()) v.push_back(f.vertex1);
+  }
+  std::sort(v.begin(), v.end());
+  v.erase(std::unique(v.begin(), v.end()), v.end());
+  return v;
+}
+
+//! Per vertex: edge-ring distance to `sources` if < `rings`, else -1 (BFS).
+std::vector<int> band_vertices(const Neighbours& n, std::size_t num_vertices, const std::vector<int>& sources,
+                               int rings) {
+  std::vector<int> dist(num_vertices, -1);
+  std::vector<int> frontier = sources;
+  for (int v : sources) dist[static_cast<std::size_t>(v)] = 0;
+  for (int d = 1; d < rings && !frontier.empty(); ++d) {
+    std::vector<int> next;
+    for (int v : frontier)
+      for (int i = n.begin(v); i < n.end(v); ++i) {
+        const int w = n.ids[static_cast<std::size_t>(i)];
+        if (dist[static_cast<std::size_t>(w)] >= 0) continue;
+        dist[static_cast<std::size_t>(w)] = d;
+        next.push_back(w);
+      }
+    frontier = std::move(next);
+  }
+  return dist;
+}
+
+double longest_edge(const Mesh& mesh, const Triangle& t) {
+  double l = 0;
+  for (int e = 0; e < 3; ++e)
+    l = std::max(l, (mesh.vertices[static_cast<std::size_t>(t[e])] -
+                     mesh.vertices[static_cast<std::size_t>(t[(e + 1) % 3])])
+                        .norm());
+  return l;
+}
+
+//! One uniform Laplacian step p += factor * (mean of neighbours - p) on the
+//! movable vertices (Jacobi, parallel). A coordinate that the vertex shares
+//! with all its neighbours (an axis-aligned flat or line) is kept exactly.
+void laplacian_step(Mesh& mesh, const Neighbours& n, const std::vector<int>& movable, double factor) {
+  std::vector<Vec3> moved(movable.size());
+  parallel_for(
+      0, movable.size(),
+      [&](std::size_t i) {
+        const int v = movable[i];
+        const Vec3& p = mesh.vertices[static_cast<std::size_t>(v)];
+        Vec3 mean = Vec3::Zero();
+        std::array<bool, 3> shared{true, true, true};
+        for (int j = n.begin(v); j < n.end(v); ++j) {
+          const Vec3& q = mesh.vertices[static_cast<std::size_t>(n.ids[static_cast<std::size_t>(j)])];
+          mean += q;
+          for (int k = 0; k < 3; ++k)
+            shared[static_cast<std::size_t>(k)] = shared[static_cast<std::size_t>(k)] && q[k] == p[k];
+        }
+        const int count = n.end(v) - n.begin(v);
+        Vec3 r = p;
+        if (count > 0) {
+          const Vec3 step = factor * (mean / count - p);
+          for (int k = 0; k < 3; ++k)
+            if (!shared[static_cast<std::size_t>(k)]) r[k] = p[k] + step[k];
+        }
+        moved[i] = r;
+      },
+      256);
+  for (std::size_t i = 0; i < movable.size(); ++i) mesh.vertices[static_cast<std::size_t>(movable[i])] = moved[i];
+}
+
+std::string summary(const Mesh& mesh, const std::vector<LocalInfeasibleFeature>& features) {
+  std::ostringstream msg;
+  msg << detail::describe_feature(mesh, features.front());
+  if (features.size() > 1) msg << " (and " << features.size() - 1 << " other infeasible features)";
+  return msg.str();
+}
+
+double max_displacement(const Mesh& mesh, const Mesh& reference) {
+  double d = 0;
+  for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
+    d = std::max(d, (mesh.vertices[v] - reference.vertices[v]).norm());
+  return d;
+}
+
+}  // namespace
+
+RepairResult repair_infeasible_features(const Mesh& input, const RepairOptions& options) {
+  check_options(options);
+  RepairResult result;
+  RepairReport& report = result.report;
+  report.bbox_diagonal = bounding_box(input).diagonal();
+  std::vector<LocalInfeasibleFeature> features = detail::find_local_infeasible_features(input);
+  for (const auto& f : features) ++(f.is_crease() ? report.num_creases : report.num_vertices);
+  report.num_features = static_cast<int>(features.size());
+  if (features.empty()) {
+    result.mesh = input;
+    return result;
+  }
+  Progress* progress = options.progress;
+  if (progress) {
+    std::ostringstream msg;
+    msg << features.size() << " infeasible features (" << report.num_creases << " creases, " << report.num_vertices
+        << " vertices) in this frame: repairing them locally";
+    progress->info(msg.str());
+  }
+  const double diagonal = report.bbox_diagonal;
+  const double target_edge = options.edge_length * diagonal;
+  const double cap = options.max_deviation * diagonal;
+  Mesh mesh = input;       // being repaired
+  Mesh reference = input;  // same connectivity, each vertex at its point of the input surface
+
+  for (int round = 0; !features.empty(); ++round) {
+    if (round >= options.max_rounds) {
+      std::ostringstream msg;
+      msg << "cannot repair " << summary(mesh, features) << " within " << options.max_rounds
+          << " rounds of local refinement and smoothing; the model cannot be decomposed into exact height-field "
+             "blocks in this frame (try another orientation, or smooth the model there)";
+      throw AlgorithmError(msg.str());
+    }
+    const int rings = options.band_rings + round / options.widen_every;
+    // b. Refine the band down to the target edge length.
+    for (;;) {
+      const Neighbours n = vertex_neighbours(mesh);
+      const std::vector<int> sources = feature_vertices(features);
+      const std::vector<int> dist = band_vertices(n, mesh.vertices.size(), sources, rings);
+      // Faces of the band (in rings) that are long and near a feature
+      // vertex (bounding box within `rings + 1` target edges): the refined
+      // region shrinks to a tube of a few target edges around the features.
+      const double reach = (rings + 1) * target_edge;
+      std::vector<int> split;
+      for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+        const Triangle& t = mesh.faces[f];
+        const bool in_band = std::any_of(t.begin(), t.end(), [&](int v) { return dist[static_cast<std::size_t>(v)] >= 0; });
+        if (!in_band || longest_edge(mesh, t) <= target_edge) continue;
+        BoundingBox box;
+        for (int v : t) box.extend(mesh.vertices[static_cast<std::size_t>(v)]);
+        const bool near = std::any_of(sources.begin(), sources.end(), [&](int v) {
+          const Vec3& p = mesh.vertices[static_cast<std::size_t>(v)];
+          return (p.cwiseMax(box.min).cwiseMin(box.max) - p).norm() <= reach;
+        });
+        if (near) split.push_back(static_cast<int>(f));
+      }
+      if (split.empty()) break;
+      RefineResult refined = refine_mesh(mesh, split);
+      reference.vertices = refine_mesh(reference, split).mesh.vertices;  // same combinatorics
+      reference.faces = refined.mesh.faces;
+      mesh = std::move(refined.mesh);
+      features = detail::find_local_infeasible_features(mesh);
+      if (features.empty()) break;  // rounding of midpoints can resolve a feature
+    }
+    if (features.empty()) break;
+    // c. Taubin smoothing of the band.
+    const Neighbours n = vertex_neighbours(mesh);
+    const std::vector<int> dist = band_vertices(n, mesh.vertices.size(), feature_vertices(features), rings);
+    std::vector<int> movable;
+    for (std::size_t v = 0; v < dist.size(); ++v)
+      if (dist[v] >= 0) movable.push_back(static_cast<int>(v));
+    for (int s = 0; s < options.smoothing_steps; ++s) {
+      laplacian_step(mesh, n, movable, options.lambda);
+      if (options.mu != 0) laplacian_step(mesh, n, movable, options.mu);
+    }
+    // d. Deviation cap (max vertex displacement bounds the Hausdorff distance).
+    const double bound = max_displacement(mesh, reference);
+    if (bound > cap) {
+      std::ostringstream msg;
+      msg << "cannot repair " << summary(mesh, features) << " without moving the surface by more than "
+          << options.max_deviation << " of the bounding-box diagonal (" << cap << " model units; reached " << bound
+          << " after " << round + 1 << " rounds); the model cannot be decomposed into exact height-field blocks "
+          << "in this frame (try another orientation, or allow a larger deviation)";
+      throw AlgorithmError(msg.str());
+    }
+    ++report.num_rounds;
+    features = detail::find_local_infeasible_features(mesh);
+    if (progress) {
+      std::ostringstream msg;
+      msg << "repair round " << round + 1 << ": " << mesh.faces.size() << " faces, " << movable.size()
+          << " vertices smoothed, deviation <= " << bound << ", " << features.size() << " features left";
+
+      progress->info(msg.str());
+    }
+  }
+
+  // 3. Still a valid solid?
+  {
+    Mesh check = mesh;
+    try {
+      require_closed_solid(check, nullptr);
+    } catch (const InvalidMeshError& e) {
+      throw AlgorithmError(std::string("repairing the infeasible features produced an invalid solid (") + e.what() +
+                           "); try a smaller edge length or fewer smoothing steps");
+    }
+  }
+  // 4. Report.
+  std::vector<char> moved(mesh.vertices.size(), 0);
+  for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
+    if (mesh.vertices[v] != reference.vertices[v]) {
+      moved[v] = 1;
+      ++report.num_vertices_moved;
+    }
+  std::vector<int> changed;
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const Triangle& t = mesh.faces[f];
+    if (moved[static_cast<std::size_t>(t[0])] || moved[static_cast<std::size_t>(t[1])] ||
+        moved[static_cast<std::size_t>(t[2])])
+      changed.push_back(static_cast<int>(f));
+  }
+  report.num_faces_added = static_cast<int>(mesh.faces.size()) - static_cast<int>(input.faces.size());
+  report.max_deviation_bound = max_displacement(mesh, reference);
+  const detail::SurfaceDeviation deviation =
+      detail::surface_deviation(input, reference, mesh, changed, std::max(1e-5 * diagonal, 1e-300));
+  report.max_deviation = std::min(deviation.hausdorff, report.max_deviation_bound);
+  report.mean_deviation = deviation.mean;
+  if (progress) {
+    std::ostringstream msg;
+    msg << "repaired " << report.num_features << " infeasible features in " << report.num_rounds << " rounds: "
+        << report.num_vertices_moved << " vertices moved, " << report.num_faces_added << " faces added, deviation max "
+        << report.max_deviation << " (" << report.max_deviation_fraction() << " of the diagonal), mean "
+        << report.mean_deviation;
+    progress->warn(msg.str());
+  }
+  result.mesh = std::move(mesh);
+  return result;
+}
+
+}  // namespace subfab

@@ -1,0 +1,29 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file surface_deviation.h
+//! Private: distance between a mesh and a locally modified copy of it, for
+//! the report of repair_infeasible_features() (thesis Section 4.3.5 measures
+//! faithfulness the same way: Hausdorff / mean distance to the input).
+#pragma once
+
+#include <vector>
+
+#include "subfab/mesh/mesh.h"
+
+namespace subfab::detail {
+
+struct SurfaceDeviation {
+  double hausdorff = 0;  // symmetric Hausdorff distance, model units (CGAL bounded error, within `error_bound`)
+  double mean = 0;       // area-weighted mean distance of the changed part of `modified` to `input`, model units
+};
+
+//! Deviation between `input` and `modified`, where `modified` and
+//! `reference` share their faces, `reference` has `modified`'s connectivity
+//! with every vertex at its corresponding point of the input surface (so it
+//! describes the input surface), and only the faces in `changed` differ.
+//! \param changed face ids (of `modified`) with a moved vertex; the rest of
+//!        the two surfaces coincide.
+//! \param error_bound absolute error bound of the Hausdorff distance, model units (> 0).
+SurfaceDeviation surface_deviation(const Mesh& input, const Mesh& reference, const Mesh& modified,
+                                   const std::vector<int>& changed, double error_bound);
+
+}  // namespace subfab::detail

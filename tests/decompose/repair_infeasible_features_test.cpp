@@ -1,0 +1,148 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "subfab/decompose/repair_infeasible_features.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "decompose/box_shapes.h"
+#include "decompose/local_infeasible_features.h"
+#include "subfab/checks/require_closed_solid.h"
+#include "subfab/core/error.h"
+#include "subfab/core/parallel.h"
+#include "subfab/decompose/grow_boxes.h"
+#include "subfab/mesh/read_mesh.h"
+#include "test_support.h"
+
+namespace subfab {
+namespace {
+
+using detail::find_local_infeasible_features;
+
+//! A thin wedge (prism over a triangle with a 30-degree apex) whose sharp
+//! edge runs along (1, 1, 1): the two faces at that edge have normals with
+//! opposite signs in every coordinate, so no axis sees both sides.
+//! Vertices 0 and 3 are the ends of the sharp edge.
+Mesh make_oblique_wedge(double apex_degrees = 30.0) {
+  const Vec3 e = Vec3(1, 1, 1).normalized();
+  const Vec3 w = Vec3(1, 1, -2).normalized();
+  const Vec3 u = Vec3(1, -1, 0).normalized();  // u, w, e orthonormal
+  const double half = apex_degrees * M_PI / 360.0, length = 1.0, height = 1.5;
+  const Vec3 a = Vec3(0.1, 0.2, 0.3);
+  const Vec3 b = a + length * (std::cos(half) * u + std::sin(half) * w);
+  const Vec3 c = a + length * (std::cos(half) * u - std::sin(half) * w);
+  Mesh m;
+  m.vertices = {a, b, c, a + height * e, b + height * e, c + height * e};
+  m.faces = {{0, 2, 1}, {3, 4, 5}, {0, 1, 4}, {0, 4, 3}, {1, 2, 5}, {1, 5, 4}, {2, 0, 3}, {2, 3, 5}};
+  if (signed_volume(m) < 0)
+    for (Triangle& t : m.faces) std::swap(t[1], t[2]);
+  return m;
+}
+
+bool grow_succeeds(const Mesh& mesh) {
+  try {
+    grow_boxes(mesh, GrowOptions{});
+    return true;
+  } catch (const AlgorithmError&) {
+    return false;
+  }
+}
+
+TEST(LocalInfeasibleFeatures, AxisAlignedBoxHasNone) {
+  EXPECT_TRUE(find_local_infeasible_features(test::make_box_mesh(Vec3(0, 0, 0), Vec3(1, 2, 3))).empty());
+}
+
+TEST(LocalInfeasibleFeatures, ObliqueWedgeHasItsSharpEdgeAndGrowFails) {
+  const Mesh wedge = make_oblique_wedge();
+  const auto features = find_local_infeasible_features(wedge);
+  ASSERT_FALSE(features.empty());
+  EXPECT_TRUE(features.front().is_crease());
+  EXPECT_EQ(features.front().vertex0, 0);
+  EXPECT_EQ(features.front().vertex1, 3);
+  // Exactly one crease: the sharp edge (the blunt edges share an axis).
+  int num_creases = 0;
+  for (const auto& f : features) num_creases += f.is_crease() ? 1 : 0;
+  EXPECT_EQ(num_creases, 1);
+  EXPECT_FALSE(grow_succeeds(wedge));
+}
+
+TEST(RepairInfeasibleFeatures, FeasibleMeshComesBackBitForBit) {
+  const Mesh box = test::make_box_mesh(Vec3(0, 0, 0), Vec3(1, 2, 3));
+  const RepairResult r = repair_infeasible_features(box, RepairOptions{});
+  EXPECT_EQ(r.mesh.vertices, box.vertices);
+  EXPECT_EQ(r.mesh.faces, box.faces);
+  EXPECT_EQ(r.report.num_features, 0);
+  EXPECT_EQ(r.report.num_rounds, 0);
+  EXPECT_EQ(r.report.num_vertices_moved, 0);
+  EXPECT_EQ(r.report.max_deviation, 0.0);
+
+  Mesh joint = read_mesh(test::data_path("joint.off"));
+  ASSERT_TRUE(find_local_infeasible_features(joint).empty());
+  const RepairResult rj = repair_infeasible_features(joint, RepairOptions{});
+  EXPECT_EQ(rj.mesh.vertices, joint.vertices);
+  EXPECT_EQ(rj.mesh.faces, joint.faces);
+}
+
+void expect_repaired(const Mesh& input, const RepairResult& r, const RepairOptions& o) {
+  EXPECT_GT(r.report.num_features, 0);
+  EXPECT_GT(r.report.num_rounds, 0);
+  EXPECT_GT(r.report.num_vertices_moved, 0);
+  EXPECT_TRUE(find_local_infeasible_features(r.mesh).empty());
+  Mesh check = r.mesh;
+  EXPECT_NO_THROW(require_closed_solid(check));
+  EXPECT_EQ(check.vertices, r.mesh.vertices);  // not flipped: still outward
+  // Input vertices keep their ids.
+  ASSERT_GE(r.mesh.vertices.size(), input.vertices.size());
+  // Deviation: reported, positive, below the cap, and below its bound.
+  EXPECT_GT(r.report.max_deviation, 0.0);
+  EXPECT_LE(r.report.max_deviation, r.report.max_deviation_bound);
+  EXPECT_LE(r.report.max_deviation_fraction(), o.max_deviation);
+  EXPECT_GT(r.report.mean_deviation, 0.0);
+  EXPECT_LE(r.report.mean_deviation, r.report.max_deviation * (1 + 1e-9));
+  EXPECT_NEAR(r.report.bbox_diagonal, bounding_box(input).diagonal(), 1e-12);
+}
+
+TEST(RepairInfeasibleFeatures, ObliqueWedgeIsRepaired) {
+  const Mesh wedge = make_oblique_wedge();
+  const RepairOptions o{};
+  const RepairResult r = repair_infeasible_features(wedge, o);
+  expect_repaired(wedge, r, o);
+  EXPECT_GE(r.report.num_creases, 1);
+  // Known gap: grow_boxes still fails on 6 faces of the repaired wedge after
+  // its 8 refinement rounds (not asserted here; see the repair report).
+  // The surface away from the sharp edge has not moved: the blunt corners
+  // are still there.
+  for (int v : {1, 2, 4, 5}) EXPECT_EQ(r.mesh.vertices[static_cast<std::size_t>(v)], wedge.vertices[static_cast<std::size_t>(v)]);
+}
+
+TEST(RepairInfeasibleFeatures, SameResultWithOneThread) {
+  const Mesh wedge = make_oblique_wedge();
+  const RepairResult all = repair_infeasible_features(wedge, RepairOptions{});
+  RepairResult one;
+  {
+    ThreadLimit limit(1);
+    one = repair_infeasible_features(wedge, RepairOptions{});
+  }
+  EXPECT_EQ(all.mesh.vertices, one.mesh.vertices);
+  EXPECT_EQ(all.mesh.faces, one.mesh.faces);
+  EXPECT_EQ(all.report.max_deviation, one.report.max_deviation);
+}
+
+TEST(RepairInfeasibleFeatures, CapsAreEnforced) {
+  const Mesh wedge = make_oblique_wedge();
+  EXPECT_THROW(repair_infeasible_features(wedge, RepairOptions{.max_deviation = 1e-7}), AlgorithmError);
+  EXPECT_THROW(repair_infeasible_features(wedge, RepairOptions{.max_rounds = 0}), AlgorithmError);
+  EXPECT_THROW(repair_infeasible_features(wedge, RepairOptions{.max_deviation = 0}), InvalidArgumentError);
+  EXPECT_THROW(repair_infeasible_features(wedge, RepairOptions{.lambda = 0.5, .mu = -0.4}), InvalidArgumentError);
+}
+
+TEST(LocalInfeasibleFeatures, PartHasInfeasibleCreasesWhereGrowFails) {
+  const Mesh part = read_mesh(test::data_path("part.off"));
+  const auto features = find_local_infeasible_features(part);
+  ASSERT_FALSE(features.empty());
+  EXPECT_TRUE(features.front().is_crease());
+  EXPECT_FALSE(grow_succeeds(part));
+}
+
+}  // namespace
+}  // namespace subfab
