@@ -11,6 +11,8 @@
 #include "decompose/solid_index.h"
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
+#include "subfab/decompose/resolve_overlaps.h"
+#include "subfab/decompose/select_cover.h"
 #include "subfab/mesh/read_mesh.h"
 #include "test_support.h"
 
@@ -201,6 +203,60 @@ INSTANTIATE_TEST_SUITE_P(Models, GrowBoxesOnRealData,
                              if (c == '.') c = '_';
                            return name;
                          });
+
+//! The cube [-1, 1]^3 with a square pyramid of height 1.5 standing on each
+//! face listed in `spikes` (0: -x, 1: +x, 2: -y, 3: +y, 4: -z, 5: +z).
+Mesh spiky_cube(const std::vector<int>& spikes) {
+  const Mesh cube = test::make_box_mesh(Vec3(-1, -1, -1), Vec3(1, 1, 1));
+  // Quads of make_box_mesh (outward), by the face they lie on.
+  const int quads[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+  Mesh m;
+  m.vertices = cube.vertices;
+  for (int q = 0; q < 6; ++q) {
+    const int* v = quads[q];
+    if (std::find(spikes.begin(), spikes.end(), q) == spikes.end()) {
+      m.faces.push_back({v[0], v[1], v[2]});
+      m.faces.push_back({v[0], v[2], v[3]});
+      continue;
+    }
+    Vec3 apex = Vec3::Zero();
+    apex[q / 2] = (q % 2) ? 2.5 : -2.5;
+    const int a = static_cast<int>(m.vertices.size());
+    m.vertices.push_back(apex);
+    for (int k = 0; k < 4; ++k) m.faces.push_back({v[k], v[(k + 1) % 4], a});
+  }
+  return m;
+}
+
+//! Grow, minimal cover and resolve on a shape: the boxes in carve order.
+ResolveResult grow_cover_resolve(const Mesh& mesh) {
+  const GrowResult g = grow_boxes(mesh, GrowOptions{});
+  expect_valid_cover(g);
+  const CoverResult cover = select_cover(g.covered, g.mesh.num_faces(), CoverOptions{});
+  EXPECT_TRUE(cover.optimal);
+  std::vector<HeightBox> chosen;
+  for (int b : cover.selected) chosen.push_back(g.boxes[static_cast<std::size_t>(b)]);
+  return resolve_overlaps(g.mesh, chosen, ResolveOptions{});
+}
+
+TEST(GrowBoxes, CubeWithOneSpikeIsOneBox) {
+  // Everything faces +x or is a side wall for it: one box milled from +x.
+  const ResolveResult r = grow_cover_resolve(spiky_cube({1}));
+  ASSERT_EQ(r.ordered.size(), 1u);
+  EXPECT_EQ(r.ordered[0].axis, Axis::PosX);
+  EXPECT_EQ(r.num_splits + r.num_trims, 0);
+}
+
+TEST(GrowBoxes, CubeWithOpposedSpikesIsTwoBoxesWithoutSplits) {
+  // Spikes on +x and -x: no single axis sees both; two boxes, +x and -x,
+  // and an order exists without splitting (the first one carved holds the
+  // whole cube).
+  const ResolveResult r = grow_cover_resolve(spiky_cube({0, 1}));
+  ASSERT_EQ(r.ordered.size(), 2u);
+  EXPECT_NE(r.ordered[0].axis, r.ordered[1].axis);
+  for (const HeightBox& b : r.ordered) EXPECT_TRUE(b.axis == Axis::PosX || b.axis == Axis::NegX);
+  EXPECT_EQ(r.num_splits, 0);
+}
 
 }  // namespace
 }  // namespace subfab
