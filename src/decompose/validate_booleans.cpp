@@ -7,10 +7,12 @@
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/clip.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -54,24 +56,60 @@ bool boxes_overlap(const BoundingBox& a, const BoundingBox& b) {
 
 }  // namespace
 
-double blocks_overlap(const Mesh& a, const Mesh& b) {
-  if (!boxes_overlap(bounding_box(a), bounding_box(b))) return 0.0;
-  require_boolean_input(a, "a block");
-  require_boolean_input(b, "a block");
-  {
-    ExactMesh ea = detail::to_exact(a), eb = detail::to_exact(b), out;
-    if (guarded([&] {
-          return PMP::corefine_and_compute_intersection(ea, eb, out, kThrowOnSelfIntersection, kThrowOnSelfIntersection);
-        }))
-      return std::max(0.0, mesh_volume(out));
-  }
+namespace {
+
+//! vol(a ∩ b) of two exact closed meshes (consumed), or nullopt when neither
+//! the intersection nor the difference is a 2-manifold.
+std::optional<double> exact_overlap(ExactMesh ea, ExactMesh eb) {
+  ExactMesh a2 = ea, b2 = eb, out;
+  if (guarded([&] {
+        return PMP::corefine_and_compute_intersection(ea, eb, out, kThrowOnSelfIntersection, kThrowOnSelfIntersection);
+      }))
+    return std::max(0.0, mesh_volume(out));
   // The intersection is not a 2-manifold (the blocks touch along an edge):
   // measure it as vol(a) - vol(a \ b) instead.
-  ExactMesh ea = detail::to_exact(a), eb = detail::to_exact(b), out;
+  const double va = mesh_volume(a2);
+  ExactMesh diff;
   if (guarded([&] {
-        return PMP::corefine_and_compute_difference(ea, eb, out, kThrowOnSelfIntersection, kThrowOnSelfIntersection);
+        return PMP::corefine_and_compute_difference(a2, b2, diff, kThrowOnSelfIntersection, kThrowOnSelfIntersection);
       }))
-    return std::max(0.0, signed_volume(a) - mesh_volume(out));
+    return std::max(0.0, va - mesh_volume(diff));
+  return std::nullopt;
+}
+
+//! m ∩ box, exactly; false when CGAL cannot clip it into a 2-manifold.
+bool clip_to(ExactMesh& m, const BoundingBox& box) {
+  const detail::ExactKernel::Iso_cuboid_3 cuboid(detail::ExactPoint(box.min.x(), box.min.y(), box.min.z()),
+                                                 detail::ExactPoint(box.max.x(), box.max.y(), box.max.z()));
+  return guarded([&] { return PMP::clip(m, cuboid, CGAL::parameters::clip_volume(true)); });
+}
+
+}  // namespace
+
+double blocks_overlap(const Mesh& a, const Mesh& b) {
+  const BoundingBox ba = bounding_box(a), bb = bounding_box(b);
+  if (!boxes_overlap(ba, bb)) return 0.0;
+  require_boolean_input(a, "a block");
+  require_boolean_input(b, "a block");
+  // a ∩ b lies in the common box of their bounding boxes: clip both to it
+  // first (exactly), so the boolean only sees the faces near the contact.
+  BoundingBox common;
+  common.min = ba.min.cwiseMax(bb.min);
+  common.max = ba.max.cwiseMin(bb.max);
+  {
+    ExactMesh ea = detail::to_exact(a), eb = detail::to_exact(b);
+    bool clipped = false;
+    try {
+      clipped = clip_to(ea, common) && clip_to(eb, common);
+    } catch (const AlgorithmError&) {
+      clipped = false;  // fall back to the whole blocks
+    }
+    if (clipped) {
+      if (ea.number_of_faces() == 0 || eb.number_of_faces() == 0) return 0.0;
+      if (const auto v = exact_overlap(std::move(ea), std::move(eb))) return *v;
+    }
+  }
+  if (const auto v = exact_overlap(detail::to_exact(a), detail::to_exact(b))) return *v;
   throw AlgorithmError("exact intersection of two blocks is not a 2-manifold");
 }
 
