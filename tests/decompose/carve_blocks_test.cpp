@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <map>
 
 #include "decompose/block_test_shapes.h"
@@ -113,6 +114,60 @@ TEST(CarveBlocks, NonManifoldRegionIsCutIntoPieces) {
     EXPECT_TRUE(is_closed_oriented(b.mesh));
     EXPECT_NEAR(signed_volume(b.mesh), 1.0, 1e-12);
   }
+}
+
+//! A 2 x 2 x 1 slab with a V notch cut into its y = 0 side; the apex edge of
+//! the notch is the vertical edge x = 1, y = 1 (volume 4 - 0.5 = 3.5).
+Mesh notched_slab() {
+  return test::extrude_polygon({{0, 0}, {0.5, 0}, {1, 1}, {1.5, 0}, {2, 0}, {2, 2}, {0, 2}},
+                               {{6, 0, 1}, {6, 1, 2}, {6, 2, 5}, {5, 2, 3}, {5, 3, 4}}, 0.0, 1.0);
+}
+
+TEST(CarveBlocks, SolidTouchingBoxPlaneAlongAnEdgeGivesSeparatePieces) {
+  // The box's plane y = 1 holds the notch's apex edge: solid ∩ box is two
+  // prisms touching along that edge (not a 2-manifold), carved as 2 blocks.
+  const Mesh solid = notched_slab();
+  ASSERT_NEAR(signed_volume(solid), 3.5, 1e-12);
+  const CarveResult r = carve_blocks(solid, {make_height_box({0, 0, 0}, {2, 1, 1}, Axis::PosZ)});
+  ASSERT_EQ(r.blocks.size(), 2u);
+  for (const Block& b : r.blocks) {
+    EXPECT_TRUE(is_closed_oriented(b.mesh));
+    EXPECT_NEAR(signed_volume(b.mesh), 0.75, 1e-12);
+    EXPECT_EQ(b.source_box, 0);
+  }
+  // One piece on each side of the edge.
+  EXPECT_EQ(bounding_box(r.blocks[0].mesh).max.x() + bounding_box(r.blocks[1].mesh).max.x(), 3.0);
+}
+
+TEST(CarveBlocks, SolidEdgeOnBoxPlaneInAnyDirection) {
+  // The same notch turned about y by 30 degrees: the apex edge still lies in
+  // the plane y = 1, now slanted within it.
+  Mesh solid = notched_slab();
+  const double c = std::cos(M_PI / 6), s = std::sin(M_PI / 6);
+  for (Vec3& v : solid.vertices) v = Vec3(c * v.x() + s * v.z(), v.y(), -s * v.x() + c * v.z());
+  const CarveResult r = carve_blocks(solid, {make_height_box({-5, -5, -5}, {5, 1, 5}, Axis::PosZ),
+                                             make_height_box({-5, 1, -5}, {5, 5, 5}, Axis::NegY)});
+  ASSERT_EQ(r.blocks.size(), 3u);
+  for (const Block& b : r.blocks) EXPECT_TRUE(is_closed_oriented(b.mesh));
+  EXPECT_NEAR(signed_volume(r.blocks[0].mesh), 0.75, 1e-9);
+  EXPECT_NEAR(signed_volume(r.blocks[1].mesh), 0.75, 1e-9);
+  EXPECT_NEAR(signed_volume(r.blocks[2].mesh), 2.0, 1e-9);
+  EXPECT_EQ(r.blocks[2].source_box, 1);
+}
+
+TEST(CarveBlocks, EarlierBoxLeavesPiecesTouchingAlongAnEdge) {
+  // The earlier box takes the notched slab's upper half; the later box's
+  // region then holds the two prisms below y = 1, which touch along the apex edge.
+  const Mesh solid = notched_slab();
+  const CarveResult r = carve_blocks(solid, {make_height_box({0, 1, 0}, {2, 2, 1}, Axis::PosY),
+                                             make_height_box({0, 0, 0}, {2, 2, 1}, Axis::PosZ)});
+  ASSERT_EQ(r.blocks.size(), 3u);
+  EXPECT_NEAR(signed_volume(r.blocks[0].mesh), 2.0, 1e-12);
+  for (std::size_t i = 1; i < 3; ++i) {
+    EXPECT_TRUE(is_closed_oriented(r.blocks[i].mesh));
+    EXPECT_NEAR(signed_volume(r.blocks[i].mesh), 0.75, 1e-12);
+  }
+  EXPECT_NEAR(total_volume(r), 3.5, 1e-12);
 }
 
 TEST(CarveBlocks, SameResultWhateverTheThreadCount) {
