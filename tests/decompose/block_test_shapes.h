@@ -6,7 +6,9 @@
 #include <array>
 #include <vector>
 
+#include "subfab/decompose/export_decomposition.h"
 #include "subfab/decompose/height_box.h"
+#include "subfab/decompose/validate_decomposition.h"
 #include "subfab/mesh/mesh.h"
 
 namespace subfab::test {
@@ -62,6 +64,20 @@ inline HeightBox make_height_box(const Vec3& min, const Vec3& max, Axis axis) {
 inline Mesh translated(Mesh m, const Vec3& t) {
   for (Vec3& v : m.vertices) v += t;
   return m;
+}
+
+//! Exported blocks as validate_decomposition() takes them.
+inline std::vector<ValidationBlock> to_validation(std::vector<ExportedBlock> blocks) {
+  std::vector<ValidationBlock> out;
+  for (ExportedBlock& e : blocks) {
+    ValidationBlock b;
+    b.mesh = std::move(e.mesh);
+    b.direction = e.direction;
+    b.machine_mesh = std::move(e.machine_mesh);
+    b.machine_transform = e.machine_transform;
+    out.push_back(std::move(b));
+  }
+  return out;
 }
 
 }  // namespace subfab::test

@@ -21,16 +21,7 @@ namespace subfab {
 namespace {
 
 std::vector<ValidationBlock> to_validation(const Mesh& input, const DecomposeResult& r) {
-  std::vector<ValidationBlock> out;
-  for (ExportedBlock& e : make_exported_blocks(input, r)) {
-    ValidationBlock b;
-    b.mesh = std::move(e.mesh);
-    b.direction = e.direction;
-    b.machine_mesh = std::move(e.machine_mesh);
-    b.machine_transform = e.machine_transform;
-    out.push_back(std::move(b));
-  }
-  return out;
+  return test::to_validation(make_exported_blocks(input, r));
 }
 
 void expect_valid(const Mesh& input, const DecomposeResult& r, double max_height) {

@@ -168,21 +168,9 @@ DecomposeResult ulp_cut_roof(const Eigen::Matrix3d& rotation, Mesh& input) {
   return r;
 }
 
-std::vector<ValidationBlock> to_validation(std::vector<ExportedBlock> blocks) {
-  std::vector<ValidationBlock> out;
-  for (ExportedBlock& e : blocks) {
-    ValidationBlock b;
-    b.mesh = std::move(e.mesh);
-    b.direction = e.direction;
-    b.machine_mesh = std::move(e.machine_mesh);
-    b.machine_transform = e.machine_transform;
-    out.push_back(std::move(b));
-  }
-  return out;
-}
 
 void expect_all_checks_pass(const Mesh& input, std::vector<ExportedBlock> blocks) {
-  const ValidationReport report = validate_decomposition(input, to_validation(std::move(blocks)));
+  const ValidationReport report = validate_decomposition(input, test::to_validation(std::move(blocks)));
   for (const CheckReport& c : report.checks)
     EXPECT_TRUE(c.passed) << c.name << ": " << (c.failures.empty() ? c.summary : c.failures[0]);
 }

@@ -230,8 +230,9 @@ TEST(OrientMesh, PrefersFeasibleFrames) {
   EXPECT_TRUE(pure.infeasible.feasible());
   for (std::size_t c = 0; c < pure.chosen; ++c) EXPECT_GT(pure.candidates[c].num_infeasible, 0);
   for (std::size_t c = 1; c < pure.candidates.size(); ++c)
-    if (!pure.candidates[c].input_frame && !pure.candidates[c - 1].input_frame)
+    if (!pure.candidates[c].input_frame && !pure.candidates[c - 1].input_frame) {
       EXPECT_LE(pure.candidates[c - 1].energy, pure.candidates[c].energy);
+    }
 }
 
 TEST(OrientMesh, RejectsUnusableInput) {
