@@ -133,6 +133,7 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
     o.progress = progress;
     o.preference.reserve(grown.boxes.size());
     for (const HeightBox& b : grown.boxes) o.preference.push_back(b.box.volume());
+    o.cost = grown.num_pieces;  // blocks per box, not boxes
     const CoverResult cover = select_cover(grown.covered, grown.mesh.num_faces(), o);
     for (int b : cover.selected) selected.push_back(grown.boxes[static_cast<std::size_t>(b)]);
     result.num_selected_boxes = selected.size();

@@ -9,6 +9,7 @@
 #include <string>
 #include <unordered_map>
 
+#include "decompose/box_pieces.h"
 #include "decompose/solid_index.h"
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
@@ -373,6 +374,16 @@ void check_options(const GrowOptions& o) {
   if (o.max_refinement_levels < 0) throw InvalidArgumentError("max refinement levels must be >= 0");
 }
 
+//! Blocks per box: connected surface pieces inside it (box_pieces.h).
+void count_pieces(const SolidIndex& index, GrowResult& result) {
+  const std::vector<int> neighbours = detail::face_neighbours(index.mesh());
+  result.num_pieces.assign(result.boxes.size(), 1);
+  parallel_for(0, result.boxes.size(), [&](std::size_t i) {
+    const auto pieces = detail::surface_pieces(index, neighbours, result.boxes[i]);
+    result.num_pieces[i] = std::max<int>(1, static_cast<int>(pieces.size()));
+  });
+}
+
 }  // namespace
 
 GrowResult grow_boxes(const Mesh& mesh, const GrowOptions& options) {
@@ -530,14 +541,15 @@ GrowResult grow_boxes(const Mesh& mesh, const GrowOptions& options) {
       if (lists_current) unique_covered.push_back(std::move(result.covered[i]));
     }
     result.boxes = std::move(unique);
+    const SolidIndex index(result.mesh);
     if (lists_current) {
       result.covered = std::move(unique_covered);
     } else {
-      const SolidIndex index(result.mesh);
       result.covered.assign(result.boxes.size(), {});
       parallel_for(0, result.boxes.size(),
                    [&](std::size_t i) { result.covered[i] = index.faces_covered(result.boxes[i]); });
     }
+    count_pieces(index, result);
   }
   if (progress) {
     std::ostringstream msg;

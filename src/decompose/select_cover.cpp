@@ -38,6 +38,7 @@ struct Instance {
   std::vector<IdList> box_rows;     // per box: the rows it covers
   std::vector<char> box_active;     // candidate for the ILP
   std::vector<char> box_forced;     // chosen by reduction
+  std::vector<int> box_cost;        // per box, >= 1
 
   //! Recomputes the lists restricted to active rows and boxes.
   void compact() {
@@ -103,10 +104,10 @@ struct Instance {
   }
 
   //! Drops every box whose rows are a subset of another active box's rows
-  //! (equal sets: the lower index is kept), and boxes with no rows. The
-  //! relation "strict subset, or equal with a higher index" is a strict
-  //! partial order, so every dropped box has a kept dominator. Returns true
-  //! on change.
+  //! with a cost no higher (equal sets and costs: the lower index is kept),
+  //! and boxes with no rows. The relation "subset and no higher cost, one of
+  //! them strict, or both equal with a higher index" is a strict partial
+  //! order, so every dropped box has a kept dominator. Returns true on change.
   bool drop_dominated_boxes() {
     std::vector<char> drop(box_rows.size(), 0);
     for (std::size_t i = 0; i < box_rows.size(); ++i) {
@@ -123,8 +124,8 @@ struct Instance {
         const auto j = static_cast<std::size_t>(j_int);
         if (j == i) continue;
         const IdList& other = box_rows[j];
-        if (!is_subset(mine, other)) continue;
-        if (mine.size() == other.size() && j > i) continue;  // equal: keep the lower index i
+        if (box_cost[j] > box_cost[i] || !is_subset(mine, other)) continue;
+        if (mine.size() == other.size() && box_cost[j] == box_cost[i] && j > i) continue;  // equal: keep the lower index i
         drop[i] = 1;
         break;
       }
@@ -160,7 +161,7 @@ int cbc_no_callback(CbcModel*, int) { return 0; }
 struct IlpSolution {
   std::vector<int> chosen;  // column indices with x = 1
   bool optimal = false;
-  double lower_bound = 0;   // on the number of columns chosen
+  double lower_bound = 0;   // on the total cost of the columns chosen
   bool time_limit_hit = false;
 };
 
@@ -227,6 +228,11 @@ void validate_input(const std::vector<std::vector<int>>& covered, std::size_t nu
   for (double p : options.preference)
     if (!(p >= 0) || !std::isfinite(p))
       throw InvalidArgumentError("select_cover: box preferences must be finite and non-negative");
+  if (!options.cost.empty() && options.cost.size() != covered.size())
+    throw InvalidArgumentError("select_cover: " + std::to_string(options.cost.size()) + " costs for " +
+                               std::to_string(covered.size()) + " boxes");
+  for (int c : options.cost)
+    if (c < 1) throw InvalidArgumentError("select_cover: box costs must be at least 1");
   for (std::size_t b = 0; b < covered.size(); ++b) {
     const IdList& faces = covered[b];
     for (std::size_t k = 0; k < faces.size(); ++k) {
@@ -283,6 +289,7 @@ CoverResult select_cover(const std::vector<std::vector<int>>& covered, std::size
     for (int b : inst.row_boxes[r]) inst.box_rows[static_cast<std::size_t>(b)].push_back(static_cast<int>(r));
   inst.box_active.assign(num_boxes, 1);
   inst.box_forced.assign(num_boxes, 0);
+  inst.box_cost = options.cost.empty() ? std::vector<int>(num_boxes, 1) : options.cost;
   inst.compact();
 
   // 2. Reduce to a fixed point.
@@ -313,13 +320,16 @@ CoverResult select_cover(const std::vector<std::vector<int>>& covered, std::size
   result.num_reduced_rows = ilp_rows.size();
   result.num_reduced_boxes = col_box.size();
   result.optimal = true;
-  result.lower_bound = static_cast<double>(result.num_forced);
+  for (std::size_t b = 0; b < num_boxes; ++b)
+    if (chosen[b]) result.lower_bound += inst.box_cost[b];
 
   if (!ilp_rows.empty()) {
-    // Costs: 1 per box, minus a tie-break below 1/(2 (n+1)) per box, so that
-    // the whole tie-break of any solution stays below 1/2 and never trades
-    // against the number of boxes.
+    // Costs: the box's cost (1 by default), minus a tie-break below
+    // 1/(2 (n+1)) per box, so that the whole tie-break of any solution stays
+    // below 1/2 and never trades against the (integral) total cost.
     std::vector<double> costs(col_box.size(), 1.0);
+    for (std::size_t j = 0; j < col_box.size(); ++j)
+      costs[j] = inst.box_cost[static_cast<std::size_t>(col_box[j])];
     bool integral = true;
     if (!options.preference.empty()) {
       double max_pref = 0;
@@ -327,7 +337,7 @@ CoverResult select_cover(const std::vector<std::vector<int>>& covered, std::size
       if (max_pref > 0) {
         const double eps = 0.5 / static_cast<double>(col_box.size() + 1);
         for (std::size_t j = 0; j < col_box.size(); ++j)
-          costs[j] = 1.0 - eps * options.preference[static_cast<std::size_t>(col_box[j])] / max_pref;
+          costs[j] -= eps * options.preference[static_cast<std::size_t>(col_box[j])] / max_pref;
         integral = false;
       }
     }
@@ -344,7 +354,8 @@ CoverResult select_cover(const std::vector<std::vector<int>>& covered, std::size
     // to whole boxes.
     result.lower_bound += std::max(0.0, std::ceil(ilp.lower_bound - 0.5 - 1e-9));
     if (options.progress) {
-      const double found = static_cast<double>(ilp.chosen.size());
+      double found = 0;
+      for (int j : ilp.chosen) found += inst.box_cost[static_cast<std::size_t>(col_box[static_cast<std::size_t>(j)])];
       const double bound = std::max(0.0, std::ceil(ilp.lower_bound - 0.5 - 1e-9));
       const double gap = found > 0 ? (found - bound) / found : 0.0;
       char line[256];

@@ -99,6 +99,27 @@ TEST(SelectCover, DominatedBoxesAreNeverChosenAndTiesKeepLowerIndex) {
   EXPECT_EQ(r.num_forced, 2u);
 }
 
+TEST(SelectCover, CostsCountBlocksNotBoxes) {
+  // Box 0 covers everything but stands for 3 blocks; boxes 1 and 2 (one
+  // block each) cover it together: 2 blocks beat 1 box of 3.
+  const Lists covered = {{0, 1, 2, 3}, {0, 1}, {2, 3}};
+  CoverOptions o;
+  EXPECT_EQ(select_cover(covered, 4, o).selected, (std::vector<int>{0}));
+  o.cost = {3, 1, 1};
+  const CoverResult r = select_cover(covered, 4, o);
+  EXPECT_EQ(r.selected, (std::vector<int>{1, 2}));
+  EXPECT_TRUE(r.optimal);
+  EXPECT_EQ(r.lower_bound, 2.0);
+  // Boxes 1 and 2 have rows that are subsets of dearer box 0's: not
+  // dominated by it (else box 0 alone, cost 3, would be forced).
+  o.cost = {3, 1, 1};
+  EXPECT_EQ(select_cover({{0, 1, 2, 3, 4}, {0, 1, 4}, {2, 3}}, 5, o).selected, (std::vector<int>{1, 2}));
+  o.cost = {0, 1, 1};
+  EXPECT_THROW(select_cover(covered, 4, o), InvalidArgumentError);
+  o.cost = {1, 1};
+  EXPECT_THROW(select_cover(covered, 4, o), InvalidArgumentError);
+}
+
 TEST(SelectCover, ReductionKeepsOptimalityOnOverlappingInstance) {
   // A 4-cycle of boxes over 4 faces plus subsets: optimum 2.
   const Lists covered = {{0, 1}, {1, 2}, {2, 3}, {0, 3}, {1}, {3}, {0}};

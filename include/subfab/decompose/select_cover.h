@@ -11,11 +11,13 @@
 //!   2. reduce until nothing changes:
 //!      - faces with the same set of boxes are one row;
 //!      - a row that is a superset of another row is implied by it (dropped);
-//!      - a box whose rows are a subset of another box's rows is dominated
-//!        (dropped; equal sets: the lower index is kept);
+//!      - a box whose rows are a subset of another box's rows, at no lower
+//!        cost, is dominated (dropped; equal sets and costs: the lower index
+//!        is kept);
 //!      - a row covered by a single box forces that box (its rows are dropped);
 //!   3. the remaining rows x boxes go to CBC: min sum_i c_i x_i,
-//!      sum_{i covers r} x_i >= 1 for every row r, x binary, with c_i = 1
+//!      sum_{i covers r} x_i >= 1 for every row r, x binary, with c_i = the
+//!      box's cost (1 by default)
 //!      (plus, optionally, a tie-break smaller than 1 in total that prefers
 //!      boxes with a larger `preference`), a time limit keeping the best
 //!      solution found, a fixed random seed and one thread (deterministic
@@ -35,7 +37,10 @@ namespace subfab {
 struct CoverOptions {
   double time_limit_s = 60.0;      // CBC wall-time limit, seconds (> 0); the best cover found is kept
   std::vector<double> preference;  // per box, >= 0 (e.g. box volume); among covers with the same
-                                   // number of boxes prefer a larger total (empty = no preference)
+                                   // cost prefer a larger total (empty = no preference)
+  std::vector<int> cost;           // per box, >= 1: blocks the box stands for (e.g. its connected
+                                   // pieces, GrowResult::num_pieces); the ILP minimises the total
+                                   // (empty = 1 per box, the thesis's count of boxes)
   bool verbose_solver = false;     // forward CBC's own log lines to progress->info
   Progress* progress = nullptr;    // stage reporting (nullptr = silent)
 };
@@ -44,7 +49,7 @@ struct CoverOptions {
 struct CoverResult {
   std::vector<int> selected;  // indices of the chosen boxes into `covered`, increasing
   bool optimal = false;       // true when the number of boxes is proven minimal
-  double lower_bound = 0;     // proven lower bound on the number of boxes
+  double lower_bound = 0;     // proven lower bound on the total cost (number of boxes with unit costs)
   std::size_t num_rows = 0;   // distinct face rows before reduction
   std::size_t num_reduced_rows = 0;   // rows left for the ILP after reduction
   std::size_t num_reduced_boxes = 0;  // box columns left for the ILP after reduction
