@@ -1,12 +1,17 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "subfab/decompose/decompose.h"
 
+#include <algorithm>
 #include <chrono>
+#include <numeric>
 #include <cmath>
 #include <sstream>
 #include <string>
 
+#include "decompose/box_pieces.h"
+#include "decompose/solid_index.h"
 #include "subfab/core/error.h"
+#include "subfab/core/parallel.h"
 #include "subfab/decompose/compute_field.h"
 #include "subfab/decompose/find_infeasible_features.h"
 #include "subfab/decompose/grow_boxes.h"
@@ -123,48 +128,72 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
   }
   result.canonical = grown.mesh;
 
-  // 4. minimal cover (4.3.2, ILP with CBC)
-  std::vector<HeightBox> selected;
-  {
-    StageScope stage(progress, "cover");
-    const auto t = Clock::now();
-    CoverOptions o;
-    o.time_limit_s = options.cover_time_limit_s;
-    o.progress = progress;
-    o.preference.reserve(grown.boxes.size());
-    for (const HeightBox& b : grown.boxes) o.preference.push_back(b.box.volume());
-    o.cost = grown.num_pieces;  // blocks per box, not boxes
-    const CoverResult cover = select_cover(grown.covered, grown.mesh.num_faces(), o);
-    for (int b : cover.selected) selected.push_back(grown.boxes[static_cast<std::size_t>(b)]);
-    result.num_selected_boxes = selected.size();
-    result.cover_optimal = cover.optimal;
-    result.timings.cover = seconds_since(t);
-  }
-
-  // 5. snap and shrink (4.3.4), then resolve overlaps: conflict graph,
-  //    cycle splits, carve order (4.3.3); both timed as "resolve".
+  // 4. minimal cover (4.3.2, ILP with CBC), 5. snap and shrink (4.3.4) and
+  //    resolve overlaps (4.3.3: conflict graph, cycle splits, carve order),
+  //    for two covers: one minimising blocks (each box costs its connected
+  //    surface pieces, box_pieces.h) and one minimising boxes (the thesis).
+  //    Covers of the same size can need very different numbers of cycle
+  //    splits, so the carve order whose boxes add up to fewer pieces is kept
+  //    (ties: the first). Snap and resolve are timed as "resolve".
   std::vector<HeightBox> ordered;
   {
-    StageScope stage(progress, "snap");
-    const auto t = Clock::now();
-    SnapShrinkOptions o;
-    o.snap_distance = average_edge_length(input) * options.grid_factor;
-    o.max_height = result.max_height;
-    o.machine_size = machine;
-    o.progress = progress;
-    selected = snap_and_shrink(result.canonical, std::move(selected), o).boxes;
-    result.timings.resolve += seconds_since(t);
-  }
-  {
-    StageScope stage(progress, "resolve");
-    const auto t = Clock::now();
-    ResolveOptions o;
-    o.progress = progress;
-    ResolveResult r = resolve_overlaps(result.canonical, std::move(selected), o);
-    ordered = std::move(r.ordered);
-    result.num_ordered_boxes = ordered.size();
-    result.num_cycle_splits = r.num_splits;
-    result.timings.resolve += seconds_since(t);
+    const detail::SolidIndex piece_index(result.canonical);
+    const std::vector<int> neighbours = detail::face_neighbours(result.canonical);
+    const bool one_piece_each = std::all_of(grown.num_pieces.begin(), grown.num_pieces.end(), [](int p) { return p == 1; });
+    std::size_t best_pieces = std::numeric_limits<std::size_t>::max();
+    for (const bool by_pieces : {true, false}) {
+      if (!by_pieces && one_piece_each) break;  // the same cover again
+      std::vector<HeightBox> selected;
+      CoverResult cover;
+      {
+        StageScope stage(progress, "cover");
+        const auto t = Clock::now();
+        CoverOptions o;
+        o.time_limit_s = options.cover_time_limit_s;
+        o.progress = progress;
+        o.preference.reserve(grown.boxes.size());
+        for (const HeightBox& b : grown.boxes) o.preference.push_back(b.box.volume());
+        if (by_pieces) o.cost = grown.num_pieces;
+        cover = select_cover(grown.covered, grown.mesh.num_faces(), o);
+        for (int b : cover.selected) selected.push_back(grown.boxes[static_cast<std::size_t>(b)]);
+        result.timings.cover += seconds_since(t);
+      }
+      const std::size_t num_selected = selected.size();
+      {
+        StageScope stage(progress, "snap");
+        const auto t = Clock::now();
+        SnapShrinkOptions o;
+        o.snap_distance = average_edge_length(input) * options.grid_factor;
+        o.max_height = result.max_height;
+        o.machine_size = machine;
+        o.progress = progress;
+        selected = snap_and_shrink(result.canonical, std::move(selected), o).boxes;
+        result.timings.resolve += seconds_since(t);
+      }
+      StageScope stage(progress, "resolve");
+      const auto t = Clock::now();
+      ResolveOptions o;
+      o.progress = progress;
+      ResolveResult r = resolve_overlaps(result.canonical, std::move(selected), o);
+      std::vector<std::size_t> pieces(r.ordered.size());
+      parallel_for(0, r.ordered.size(), [&](std::size_t i) {
+        pieces[i] = std::max<std::size_t>(1, detail::surface_pieces(piece_index, neighbours, r.ordered[i]).size());
+      });
+      const std::size_t total = std::accumulate(pieces.begin(), pieces.end(), std::size_t{0});
+      if (progress)
+        progress->info(std::string("cover by ") + (by_pieces ? "pieces" : "boxes") + ": " +
+                       std::to_string(num_selected) + " boxes, " + std::to_string(r.ordered.size()) +
+                       " in carve order, " + std::to_string(total) + " pieces");
+      if (total < best_pieces) {
+        best_pieces = total;
+        ordered = std::move(r.ordered);
+        result.num_selected_boxes = num_selected;
+        result.cover_optimal = cover.optimal;
+        result.num_ordered_boxes = ordered.size();
+        result.num_cycle_splits = r.num_splits;
+      }
+      result.timings.resolve += seconds_since(t);
+    }
   }
 
   // 6. carve (exact booleans) and 7. merge (4.3.4 post-processing)

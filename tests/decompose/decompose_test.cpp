@@ -41,6 +41,22 @@ TEST(Decompose, CubeIsOneBlock) {
   expect_valid(cube, r, r.max_height);
 }
 
+TEST(Decompose, TwoCubesApartAreTwoBlocksFromAsManyPieces) {
+  // One box can cover both cubes (two pieces, two blocks); the cover counts
+  // pieces, so the result is two blocks either way and never more.
+  Mesh two = test::box_solid({0, 0, 0}, {1, 1, 1});
+  const Mesh other = test::box_solid({2, 0, 0}, {3, 1, 1});
+  const int offset = static_cast<int>(two.vertices.size());
+  two.vertices.insert(two.vertices.end(), other.vertices.begin(), other.vertices.end());
+  for (Triangle t : other.faces) two.faces.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+  DecomposeOptions o;
+  o.orient = false;
+  const DecomposeResult r = decompose(two, o);
+  ASSERT_EQ(r.blocks.size(), 2u);
+  EXPECT_LE(r.num_selected_boxes, 2u);
+  expect_valid(two, r, r.max_height);
+}
+
 TEST(Decompose, LShapeIsValid) {
   const Mesh l = test::l_solid();
   DecomposeOptions o;
