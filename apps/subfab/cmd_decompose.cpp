@@ -4,6 +4,7 @@
 //! OUTDIR/blocks/block_NNN.obj (input frame) and OUTDIR/mill/block_NNN.stl
 //! (ready to mill: direction +Z, base on z = 0).
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 #include <limits>
 #include <memory>
@@ -19,6 +20,7 @@
 #include "subfab/decompose/decompose.h"
 #include "subfab/decompose/export_decomposition.h"
 #include "subfab/mesh/read_mesh.h"
+#include "subfab/mesh/write_mesh.h"
 
 namespace subfab::cli {
 namespace {
@@ -31,6 +33,8 @@ struct DecomposeArgs {
   std::string machine;
   bool no_orient = false;
   double grid_factor = 1.0;
+  bool exact = false;
+  double max_deviation = 0.005;
   CommonOptions common;
 };
 
@@ -64,6 +68,8 @@ int run_decompose(const DecomposeArgs& args) {
   if (!args.machine.empty()) options.machine = parse_machine(args.machine);
   options.orient = !args.no_orient;
   options.grid_factor = args.grid_factor;
+  options.repair = !args.exact;
+  options.max_deviation = args.max_deviation;
 
   ConsoleProgress progress(std::cerr, args.common.quiet, stderr_is_terminal());
   options.progress = &progress;
@@ -81,6 +87,26 @@ int run_decompose(const DecomposeArgs& args) {
     info.input_path = args.mesh;
     info.options = options;
     blocks = export_decomposition(mesh, result, info, args.outdir);
+    // The repaired input (what the blocks decompose) next to the blocks; a
+    // stale one from an earlier run is removed.
+    const std::filesystem::path repaired_path = std::filesystem::path(args.outdir) / kRepairedInputFile;
+    if (result.repaired_input) {
+      write_mesh(*result.repaired_input, repaired_path);
+    } else {
+      std::error_code ec;
+      std::filesystem::remove(repaired_path, ec);
+    }
+  }
+  if (result.repaired_input && !args.common.quiet) {
+    const RepairReport& r = result.repair;
+    std::ostringstream msg;
+    msg << "REPAIRED INPUT: " << r.num_features << " infeasible feature(s) (" << r.num_creases << " creases, "
+        << r.num_vertices << " vertices) smoothed locally; the blocks decompose " << args.outdir << "/"
+        << kRepairedInputFile << ", not the input: Hausdorff deviation " << r.max_deviation << " ("
+        << r.max_deviation_fraction() << " of the diagonal, cap " << args.max_deviation << "), mean "
+        << r.mean_deviation << " (" << r.mean_deviation_fraction() << "); " << r.num_faces_removed
+        << " input faces replaced by " << r.num_faces_new << " (use --exact to refuse instead)";
+    progress.warn(msg.str());
   }
   if (!args.common.quiet) progress.print_timings(std::cerr);
 
@@ -102,11 +128,19 @@ int run_decompose(const DecomposeArgs& args) {
     j["num_cycle_splits"] = result.num_cycle_splits;
     j["num_merges"] = result.num_merges;
     j["num_refined_faces"] = result.num_refined_faces;
+    if (result.repaired_input)
+      j["repair"] = {{"mesh", (std::filesystem::path(args.outdir) / kRepairedInputFile).string()},
+                     {"num_features", result.repair.num_features},
+                     {"max_deviation", result.repair.max_deviation},
+                     {"max_deviation_fraction", result.repair.max_deviation_fraction()},
+                     {"mean_deviation", result.repair.mean_deviation}};
+    else
+      j["repair"] = nullptr;
     j["cover_optimal"] = result.cover_optimal;
     j["material_volume_fraction"] = input_volume > 0 ? total / input_volume : 0.0;
     j["min_block_volume_fraction"] = blocks.empty() || input_volume <= 0 ? 0.0 : smallest / input_volume;
-    j["timings_s"] = {{"orient", t.orient}, {"field", t.field},     {"grow", t.grow},   {"cover", t.cover},
-                      {"resolve", t.resolve}, {"carve", t.carve}, {"total", t.total}};
+    j["timings_s"] = {{"orient", t.orient}, {"repair", t.repair},   {"field", t.field}, {"grow", t.grow},
+                      {"cover", t.cover},   {"resolve", t.resolve}, {"carve", t.carve}, {"total", t.total}};
     std::cout << j.dump(2) << "\n";
   } else if (!args.common.quiet) {
     std::cout << blocks.size() << " blocks written to " << args.outdir << " (" << result.num_selected_boxes
@@ -124,7 +158,10 @@ const RegisterCommand kRegisterDecompose({"decompose", 20, [](CLI::App& app) {
       "Split a closed mesh into non-overlapping height-field blocks, each millable in one pass of a "
       "3-axis machine (thesis Chapter 4). Writes OUTDIR/decomposition.json, OUTDIR/blocks/block_NNN.obj "
       "(input coordinates) and OUTDIR/mill/block_NNN.stl (milling direction +Z, base on z = 0). "
-      "Exit 2 if the mesh is not a closed, manifold, consistently oriented solid.");
+      "Creases and spikes that no axis-aligned block can cover in the chosen frame are smoothed locally "
+      "first (deviation capped by --max-deviation and reported; OUTDIR/input_repaired.obj is then what the "
+      "blocks decompose), or refused with --exact. Exit 2 if the mesh is not a closed, manifold, consistently "
+      "oriented solid; exit 3 if no valid decomposition was found.");
   sub->add_option("MESH", args->mesh, "Input mesh (.obj .off .ply .stl), a closed solid")->required();
   sub->add_option("-o,--output", args->outdir, "Output folder (created if needed)")->required();
   sub->add_option("--max-height", args->max_height,
@@ -138,6 +175,14 @@ const RegisterCommand kRegisterDecompose({"decompose", 20, [](CLI::App& app) {
                   "Machine work volume X,Y,Z in model units: every block must fit, Z along its milling "
                   "direction (default: no limit)");
   sub->add_flag("--no-orient", args->no_orient, "Keep the input frame (skip the orientation search of thesis 4.3.1)");
+  sub->add_flag("--exact", args->exact,
+                "Refuse (exit 3, listing them) when the chosen frame has creases or spikes that no axis-aligned "
+                "height-field block can cover, instead of smoothing them locally (default: repair them, thesis "
+                "4.3.5, and decompose OUTDIR/input_repaired.obj; the deviation is reported)");
+  sub->add_option("--max-deviation", args->max_deviation,
+                  "Cap on the local repair's Hausdorff distance from the input, as a fraction of the "
+                  "bounding-box diagonal (default 0.005); exit 3 if the repair needs more")
+      ->check(CLI::PositiveNumber);
   sub->add_option("--grid-factor", args->grid_factor,
                   "Grid spacing = average edge length x G (default 1; smaller is finer and slower)")
       ->check(CLI::PositiveNumber);

@@ -11,6 +11,7 @@
 #include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <string>
 
@@ -37,8 +38,16 @@ Vec3 json_vec(const Json& j, const std::string& what) {
   return Vec3(j[0].get<double>(), j[1].get<double>(), j[2].get<double>());
 }
 
+//! The repair recorded in decomposition.json ("input"."repair"), if any.
+struct RecordedRepair {
+  std::string mesh;  // OUTDIR-relative path of the repaired input
+  double max_deviation = 0, max_deviation_fraction = 0, mean_deviation = 0;
+  int num_features = 0;
+};
+
 //! Reads decomposition.json and the block files it lists.
-std::vector<ValidationBlock> read_decomposition(const fs::path& outdir, ValidationLimits& limits) {
+std::vector<ValidationBlock> read_decomposition(const fs::path& outdir, ValidationLimits& limits,
+                                                std::optional<RecordedRepair>& repair) {
   const fs::path path = outdir / "decomposition.json";
   std::ifstream in(path);
   if (!in) throw IoError(path.string() + ": cannot open (is this a folder written by subfab decompose?)");
@@ -47,6 +56,13 @@ std::vector<ValidationBlock> read_decomposition(const fs::path& outdir, Validati
     doc = Json::parse(in);
     if (doc.at("format").get<std::string>() != "subfab.decomposition")
       throw IoError(path.string() + ": not a subfab.decomposition file");
+    const Json& input_json = doc.at("input");
+    if (input_json.contains("repair") && !input_json["repair"].is_null()) {
+      const Json& r = input_json["repair"];
+      repair = RecordedRepair{r.at("mesh").get<std::string>(), r.at("max_deviation").get<double>(),
+                              r.at("max_deviation_fraction").get<double>(), r.at("mean_deviation").get<double>(),
+                              r.at("num_features").get<int>()};
+    }
     const Json& p = doc.at("parameters");
     if (p.contains("max_height") && !p["max_height"].is_null()) limits.max_height = p["max_height"].get<double>();
     if (p.contains("machine") && !p["machine"].is_null()) limits.machine = json_vec(p["machine"], "parameters.machine");
@@ -70,11 +86,33 @@ std::vector<ValidationBlock> read_decomposition(const fs::path& outdir, Validati
 
 int run_validate(const ValidateArgs& args) {
   ThreadLimit threads(static_cast<std::size_t>(args.common.threads));
-  const Mesh input = read_mesh(args.mesh);  // IoError / InvalidMeshError: exit 2
+  Mesh input = read_mesh(args.mesh);  // IoError / InvalidMeshError: exit 2
   ValidationOptions options;
-  const std::vector<ValidationBlock> blocks = read_decomposition(args.outdir, options.limits);
+  std::optional<RecordedRepair> repair;
+  const std::vector<ValidationBlock> blocks = read_decomposition(args.outdir, options.limits, repair);
   ConsoleProgress progress(std::cerr, args.common.quiet, stderr_is_terminal());
   options.progress = &progress;
+  std::string repair_note;
+  if (repair) {
+    // The blocks decompose the repaired input: checks 4 (inside) and 5
+    // (coverage) are run against it (decompose recorded its deviation).
+    const Mesh original = std::move(input);
+    input = read_mesh(fs::path(args.outdir) / repair->mesh);
+    std::ostringstream note;
+    note << "NOTE: the decomposition is of the REPAIRED input " << (fs::path(args.outdir) / repair->mesh).string()
+         << " (" << repair->num_features << " infeasible features smoothed; recorded Hausdorff deviation from "
+         << args.mesh << ": " << repair->max_deviation << " = " << repair->max_deviation_fraction
+         << " of the diagonal, mean " << repair->mean_deviation << "); checks 4 (inside) and 5 (coverage) use it";
+    // Sanity check that it is the repaired version of MESH: the bounding
+    // boxes differ by at most the recorded deviation (+ its error bound).
+    const BoundingBox a = bounding_box(original), b = bounding_box(input);
+    const double slack = repair->max_deviation + 2e-5 * a.diagonal();
+    if (!((a.min - b.min).cwiseAbs().maxCoeff() <= slack && (a.max - b.max).cwiseAbs().maxCoeff() <= slack))
+      throw IoError(note.str() + "; but its bounding box differs from " + args.mesh +
+                    "'s by more than the recorded deviation: is this the mesh that was decomposed?");
+    repair_note = note.str();
+    if (!args.common.quiet) progress.warn(repair_note);
+  }
   const ValidationReport report = validate_decomposition(input, blocks, options);
 
   if (args.common.json) {
@@ -83,6 +121,13 @@ int run_validate(const ValidateArgs& args) {
     j["decomposition"] = args.outdir;
     j["num_blocks"] = blocks.size();
     j["passed"] = report.passed();
+    if (repair)
+      j["repaired_input"] = {{"mesh", (fs::path(args.outdir) / repair->mesh).string()},
+                             {"max_deviation", repair->max_deviation},
+                             {"max_deviation_fraction", repair->max_deviation_fraction},
+                             {"mean_deviation", repair->mean_deviation}};
+    else
+      j["repaired_input"] = nullptr;
     nlohmann::ordered_json checks = nlohmann::ordered_json::array();
     for (const CheckReport& c : report.checks)
       checks.push_back({{"name", c.name},
@@ -95,6 +140,7 @@ int run_validate(const ValidateArgs& args) {
   } else {
     std::ostringstream out;
     out << "validate " << args.outdir << " against " << args.mesh << " (" << blocks.size() << " blocks)\n";
+    if (repair) out << "  " << repair_note << "\n";
     int k = 1;
     for (const CheckReport& c : report.checks) {
       out << "  " << k++ << ". " << (c.passed ? "PASS" : "FAIL") << "  " << std::left << std::setw(62) << c.name
@@ -118,7 +164,9 @@ const RegisterCommand kRegisterValidate({"validate", 30, [](CLI::App& app) {
       "n.d < -1e-3 only on the base); (3) no overlaps (exact, <= 1e-6 of the smaller block); (4) inside "
       "the input (exact, <= 1e-6 of the block outside); (5) the input surface covered (20000+ samples "
       "within 1e-5 x diagonal of a block); (6) height and machine limits; (7) machine meshes are the "
-      "blocks moved rigidly. Exit 0 if all pass, 3 if one fails, 2 if the files cannot be read.");
+      "blocks moved rigidly. When decompose repaired infeasible features (decomposition.json names "
+      "OUTDIR/input_repaired.obj), checks 4 and 5 use the repaired input and say so, with the recorded "
+      "deviation. Exit 0 if all pass, 3 if one fails, 2 if the files cannot be read.");
   sub->add_option("MESH", args->mesh, "The input mesh that was decomposed")->required();
   sub->add_option("OUTDIR", args->outdir, "Folder written by subfab decompose")->required();
   add_common_options(*sub, args->common);

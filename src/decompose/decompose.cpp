@@ -8,6 +8,10 @@
 #include <sstream>
 #include <string>
 
+#include <unordered_map>
+
+#include "decompose/rotate_accurately.h"
+#include "subfab/checks/require_closed_solid.h"
 #include "decompose/box_pieces.h"
 #include "decompose/solid_index.h"
 #include "subfab/core/error.h"
@@ -38,6 +42,8 @@ void check_options(const DecomposeOptions& o) {
   if (o.machine && !((o.machine->array() > 0).all() && o.machine->allFinite()))
     throw InvalidArgumentError("--machine sizes must be positive numbers in model units");
   if (!(o.cover_time_limit_s > 0)) throw InvalidArgumentError("the cover time limit must be positive");
+  if (!(o.max_deviation > 0) || !std::isfinite(o.max_deviation))
+    throw InvalidArgumentError("--max-deviation must be a positive fraction of the bounding-box diagonal");
 }
 
 //! The early-failure message: what, where (input coordinates), why, what to do.
@@ -66,6 +72,30 @@ std::string infeasible_message(const FeasibilityResult& infeasible, const Mesh& 
   return msg.str();
 }
 
+//! The repaired canonical mesh in input coordinates: vertices that are
+//! canonical input vertices get the input's exact coordinates back, the
+//! others are turned back with one rounding.
+Mesh repaired_in_input_frame(const Mesh& input, const Mesh& canonical, const Mesh& repaired,
+                             const Eigen::Matrix3d& rotation) {
+  struct Hash {
+    std::size_t operator()(const Vec3& v) const {
+      return std::hash<double>{}(v.x()) ^ (std::hash<double>{}(v.y()) * 31) ^ (std::hash<double>{}(v.z()) * 131);
+    }
+  };
+  std::unordered_map<Vec3, std::size_t, Hash> input_vertex;
+  for (std::size_t i = 0; i < canonical.num_vertices() && i < input.num_vertices(); ++i)
+    input_vertex.emplace(canonical.vertices[i], i);
+  const Eigen::Matrix3d back = rotation.transpose();
+  Mesh out;
+  out.faces = repaired.faces;
+  out.vertices.reserve(repaired.num_vertices());
+  for (const Vec3& c : repaired.vertices) {
+    const auto it = input_vertex.find(c);
+    out.vertices.push_back(it != input_vertex.end() ? input.vertices[it->second] : detail::rotate_accurately(back, c));
+  }
+  return out;
+}
+
 }  // namespace
 
 DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
@@ -79,10 +109,10 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
   const Vec3 machine = options.machine ? *options.machine : Vec3::Constant(std::numeric_limits<double>::infinity());
 
   // 1. orient (4.3.1)
+  FeasibilityResult infeasible;
   {
     StageScope stage(progress, "orient");
     const auto t = Clock::now();
-    FeasibilityResult infeasible;
     if (options.orient) {
       OrientOptions o;
       o.progress = progress;
@@ -93,8 +123,44 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
     result.canonical = rotate_into_frame(input, result.rotation, OrientOptions{}.snap_tolerance);
     if (!options.orient) infeasible = find_infeasible_features(result.canonical);
     result.timings.orient = seconds_since(t);
-    // Fail before the expensive stages when no refinement can ever cover the surface.
-    if (!infeasible.feasible()) throw AlgorithmError(infeasible_message(infeasible, input, options.orient));
+    // Fail before the expensive stages when no refinement can ever cover the
+    // surface, unless the features are to be repaired (4.3.5).
+    if (!infeasible.feasible() && !options.repair)
+      throw AlgorithmError(infeasible_message(infeasible, input, options.orient));
+  }
+  // 1b. local repair of the infeasible features (4.3.5)
+  if (!infeasible.feasible()) {
+    StageScope repair_stage(progress, "repair");
+    const auto tr = Clock::now();
+    RepairOptions ro;
+    ro.max_deviation = options.max_deviation;
+    ro.progress = progress;
+    if (progress)
+      progress->warn(std::to_string(infeasible.size()) + " feature(s) no height-field block can cover in the " +
+                     (options.orient ? "chosen" : "input") + " frame (" +
+                     describe_infeasible_features(infeasible, input, 3) +
+                     "; input coordinates): repairing them by local smoothing (--exact refuses instead)");
+    RepairResult repaired;
+    try {
+      repaired = repair_infeasible_features(result.canonical, ro);
+    } catch (const AlgorithmError& e) {
+      throw AlgorithmError(std::string("the local repair of infeasible features failed: ") + e.what() +
+                           ". Without it: " + infeasible_message(infeasible, input, options.orient));
+    }
+    Mesh in_input = repaired_in_input_frame(input, result.canonical, repaired.mesh, result.rotation);
+    {
+      Mesh check = in_input;  // the rounding back to the input frame must keep a valid solid
+      try {
+        require_closed_solid(check, nullptr);
+      } catch (const InvalidMeshError& e) {
+        throw AlgorithmError(std::string("the repaired mesh is not a valid solid in the input frame: ") + e.what());
+      }
+    }
+    result.repair = repaired.report;
+    result.canonical = std::move(repaired.mesh);
+    result.num_input_vertices = result.canonical.num_vertices();
+    result.repaired_input = std::move(in_input);
+    result.timings.repair = seconds_since(tr);
   }
 
   // 2. fields (4.3.2)
@@ -104,6 +170,8 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
     const auto t = Clock::now();
     FieldOptions o;
     o.grid_factor = options.grid_factor;
+    if (result.repaired_input)  // the grid keeps the input's spacing (the repair adds small faces)
+      o.grid_factor *= average_edge_length(input) / average_edge_length(result.canonical);
     o.max_height = result.max_height;
     o.progress = progress;
     fields = compute_fields(result.canonical, o);

@@ -27,6 +27,27 @@ std::string block_file(const char* folder, std::size_t i, const char* ext) {
   return buf;
 }
 
+//! The repair record of "input" (null when nothing was repaired).
+Json repair_json(const DecomposeResult& result, const ExportInfo& info) {
+  if (!result.repaired_input) return Json(nullptr);
+  const RepairReport& r = result.repair;
+  return {{"mesh", kRepairedInputFile},
+          {"vertices", result.repaired_input->num_vertices()},
+          {"faces", result.repaired_input->num_faces()},
+          {"num_features", r.num_features},
+          {"num_creases", r.num_creases},
+          {"num_vertices", r.num_vertices},
+          {"num_rounds", r.num_rounds},
+          {"num_faces_removed", r.num_faces_removed},
+          {"num_faces_new", r.num_faces_new},
+          {"max_deviation", r.max_deviation},
+          {"mean_deviation", r.mean_deviation},
+          {"max_deviation_fraction", r.max_deviation_fraction()},
+          {"mean_deviation_fraction", r.mean_deviation_fraction()},
+          {"hausdorff_error", r.hausdorff_error},
+          {"max_deviation_cap_fraction", info.options.max_deviation}};
+}
+
 }  // namespace
 
 Eigen::Matrix3d axis_to_machine(Axis axis) {
@@ -46,7 +67,8 @@ std::vector<ExportedBlock> make_exported_blocks(const Mesh& input, const Decompo
                                                 Progress* progress) {
   FinalizeOptions fo;
   fo.progress = progress;
-  FinalizeResult finished = finalize_blocks(input, result, fo);
+  // After a repair (4.3.5) the blocks decompose the repaired input.
+  FinalizeResult finished = finalize_blocks(result.repaired_input ? *result.repaired_input : input, result, fo);
   std::vector<ExportedBlock> out;
   out.reserve(finished.blocks.size());
   for (FinalBlock& b : finished.blocks) {
@@ -92,7 +114,8 @@ std::string decomposition_json(const Mesh& input, const DecomposeResult& result,
   doc["input"] = {{"path", info.input_path},
                   {"vertices", input.num_vertices()},
                   {"faces", input.num_faces()},
-                  {"bbox_diagonal", diagonal}};
+                  {"bbox_diagonal", diagonal},
+                  {"repair", repair_json(result, info)}};
   Json rot = Json::array();
   for (int r = 0; r < 3; ++r) rot.push_back(Json::array({result.rotation(r, 0), result.rotation(r, 1), result.rotation(r, 2)}));
   doc["rotation"] = rot;

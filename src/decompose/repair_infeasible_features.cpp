@@ -7,17 +7,16 @@
 #include <string>
 #include <vector>
 
-#include "decompose/local_infeasible_features.h"
 #include "decompose/surface_deviation.h"
 #include "subfab/checks/require_closed_solid.h"
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
+#include "subfab/decompose/find_infeasible_features.h"
 #include "subfab/decompose/refine_mesh.h"
 
 namespace subfab {
 namespace {
 
-using detail::LocalInfeasibleFeature;
 
 void check_options(const RepairOptions& o) {
   auto positive = [](double x) { return x > 0 && std::isfinite(x); };
@@ -64,11 +63,11 @@ Neighbours vertex_neighbours(const Mesh& mesh) {
 }
 
 //! Vertices of the features (sorted, unique).
-std::vector<int> feature_vertices(const std::vector<LocalInfeasibleFeature>& features) {
+std::vector<int> feature_vertices(const FeasibilityResult& features) {
   std::vector<int> v;
-  for (const auto& f : features) {
+  for (const auto& f : features.features) {
     v.push_back(f.vertex0);
-    if (f.is_crease()) v.push_back(f.vertex1);
+    if (f.vertex1 >= 0) v.push_back(f.vertex1);
   }
   std::sort(v.begin(), v.end());
   v.erase(std::unique(v.begin(), v.end()), v.end());
@@ -135,10 +134,10 @@ void laplacian_step(Mesh& mesh, const Neighbours& n, const std::vector<int>& mov
   for (std::size_t i = 0; i < movable.size(); ++i) mesh.vertices[static_cast<std::size_t>(movable[i])] = moved[i];
 }
 
-std::string summary(const Mesh& mesh, const std::vector<LocalInfeasibleFeature>& features) {
+std::string summary(const Mesh& mesh, const FeasibilityResult& features) {
   std::ostringstream msg;
-  msg << detail::describe_feature(mesh, features.front());
-  if (features.size() > 1) msg << " (and " << features.size() - 1 << " other infeasible features)";
+  msg << features.num_edges << " crease edge(s) and " << features.num_vertices << " corner vertex(es) ("
+      << describe_infeasible_features(features, mesh, 2) << ")";
   return msg.str();
 }
 
@@ -156,10 +155,11 @@ RepairResult repair_infeasible_features(const Mesh& input, const RepairOptions& 
   RepairResult result;
   RepairReport& report = result.report;
   report.bbox_diagonal = bounding_box(input).diagonal();
-  std::vector<LocalInfeasibleFeature> features = detail::find_local_infeasible_features(input);
-  for (const auto& f : features) ++(f.is_crease() ? report.num_creases : report.num_vertices);
+  FeasibilityResult features = find_infeasible_features(input);
+  report.num_creases = static_cast<int>(features.num_edges);
+  report.num_vertices = static_cast<int>(features.num_vertices);
   report.num_features = static_cast<int>(features.size());
-  if (features.empty()) {
+  if (features.feasible()) {
     result.mesh = input;
     return result;
   }
@@ -176,7 +176,7 @@ RepairResult repair_infeasible_features(const Mesh& input, const RepairOptions& 
   Mesh mesh = input;       // being repaired
   Mesh reference = input;  // same connectivity, each vertex at its point of the input surface
 
-  for (int round = 0; !features.empty(); ++round) {
+  for (int round = 0; !features.feasible(); ++round) {
     if (round >= options.max_rounds) {
       std::ostringstream msg;
       msg << "cannot repair " << summary(mesh, features) << " within " << options.max_rounds
@@ -212,10 +212,10 @@ RepairResult repair_infeasible_features(const Mesh& input, const RepairOptions& 
       reference.vertices = refine_mesh(reference, split).mesh.vertices;  // same combinatorics
       reference.faces = refined.mesh.faces;
       mesh = std::move(refined.mesh);
-      features = detail::find_local_infeasible_features(mesh);
-      if (features.empty()) break;  // rounding of midpoints can resolve a feature
+      features = find_infeasible_features(mesh);
+      if (features.feasible()) break;  // rounding of midpoints can resolve a feature
     }
-    if (features.empty()) break;
+    if (features.feasible()) break;
     // c. Taubin smoothing of the band.
     const Neighbours n = vertex_neighbours(mesh);
     const std::vector<int> dist = band_vertices(n, mesh.vertices.size(), feature_vertices(features), rings);
@@ -230,14 +230,15 @@ RepairResult repair_infeasible_features(const Mesh& input, const RepairOptions& 
     const double bound = max_displacement(mesh, reference);
     if (bound > cap) {
       std::ostringstream msg;
+      features = find_infeasible_features(mesh);  // ids of this mesh, for the message
       msg << "cannot repair " << summary(mesh, features) << " without moving the surface by more than "
           << options.max_deviation << " of the bounding-box diagonal (" << cap << " model units; reached " << bound
           << " after " << round + 1 << " rounds); the model cannot be decomposed into exact height-field blocks "
-          << "in this frame (try another orientation, or allow a larger deviation)";
+          << "in this frame (allow a larger deviation with --max-deviation, or try another orientation)";
       throw AlgorithmError(msg.str());
     }
     ++report.num_rounds;
-    features = detail::find_local_infeasible_features(mesh);
+    features = find_infeasible_features(mesh);
     if (progress) {
       std::ostringstream msg;
       msg << "repair round " << round + 1 << ": " << mesh.faces.size() << " faces, " << movable.size()
@@ -258,29 +259,21 @@ RepairResult repair_infeasible_features(const Mesh& input, const RepairOptions& 
     }
   }
   // 4. Report.
-  std::vector<char> moved(mesh.vertices.size(), 0);
-  for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
-    if (mesh.vertices[v] != reference.vertices[v]) {
-      moved[v] = 1;
-      ++report.num_vertices_moved;
-    }
-  std::vector<int> changed;
-  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-    const Triangle& t = mesh.faces[f];
-    if (moved[static_cast<std::size_t>(t[0])] || moved[static_cast<std::size_t>(t[1])] ||
-        moved[static_cast<std::size_t>(t[2])])
-      changed.push_back(static_cast<int>(f));
-  }
-  report.num_faces_added = static_cast<int>(mesh.faces.size()) - static_cast<int>(input.faces.size());
-  report.max_deviation_bound = max_displacement(mesh, reference);
+  const std::vector<int> changed_input = detail::faces_not_in(input, mesh);
+  const std::vector<int> changed = detail::faces_not_in(mesh, input);
+  report.num_faces_removed = static_cast<int>(changed_input.size());
+  report.num_faces_new = static_cast<int>(changed.size());
+  report.hausdorff_error = std::max(1e-5 * diagonal, 1e-300);
+  // Exact where the surface did not move: `reference` describes the input
+  // surface with the result's connectivity.
   const detail::SurfaceDeviation deviation =
-      detail::surface_deviation(input, reference, mesh, changed, std::max(1e-5 * diagonal, 1e-300));
-  report.max_deviation = std::min(deviation.hausdorff, report.max_deviation_bound);
+      detail::surface_deviation(input, changed_input, mesh, changed, report.hausdorff_error);
+  report.max_deviation = std::min(deviation.hausdorff, max_displacement(mesh, reference));
   report.mean_deviation = deviation.mean;
   if (progress) {
     std::ostringstream msg;
     msg << "repaired " << report.num_features << " infeasible features in " << report.num_rounds << " rounds: "
-        << report.num_vertices_moved << " vertices moved, " << report.num_faces_added << " faces added, deviation max "
+        << report.num_faces_removed << " faces replaced by " << report.num_faces_new << ", deviation max "
         << report.max_deviation << " (" << report.max_deviation_fraction() << " of the diagonal), mean "
         << report.mean_deviation;
     progress->warn(msg.str());

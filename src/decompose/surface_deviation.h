@@ -16,14 +16,27 @@ struct SurfaceDeviation {
   double mean = 0;       // area-weighted mean distance of the changed part of `modified` to `input`, model units
 };
 
+//! Deviation between `input` and `modified`, two surfaces that coincide
+//! except on the faces `changed_input` of `input` and `changed_modified` of
+//! `modified` (every other face of either is a face of the other).
+//! Hausdorff = max(distance from the changed part of `modified` to `input`,
+//! distance from the changed part of `input` to `modified`).
+//! \param error_bound absolute error bound of the Hausdorff distance, model units (> 0).
+SurfaceDeviation surface_deviation(const Mesh& input, const std::vector<int>& changed_input, const Mesh& modified,
+                                   const std::vector<int>& changed_modified, double error_bound);
+
 //! Deviation between `input` and `modified`, where `modified` and
 //! `reference` share their faces, `reference` has `modified`'s connectivity
 //! with every vertex at its corresponding point of the input surface (so it
-//! describes the input surface), and only the faces in `changed` differ.
-//! \param changed face ids (of `modified`) with a moved vertex; the rest of
-//!        the two surfaces coincide.
-//! \param error_bound absolute error bound of the Hausdorff distance, model units (> 0).
+//! describes the input surface; it may be `input` itself), and only the faces
+//! in `changed` differ: max(distance from the changed faces of `modified` to
+//! `input`, distance from the same faces of `reference` to `modified`); the
+//! mean over the changed faces of `modified`.
 SurfaceDeviation surface_deviation(const Mesh& input, const Mesh& reference, const Mesh& modified,
                                    const std::vector<int>& changed, double error_bound);
+
+//! The faces of `a` that are not faces of `b` (same three corner positions
+//! in the same cyclic order), in id order.
+std::vector<int> faces_not_in(const Mesh& a, const Mesh& b);
 
 }  // namespace subfab::detail

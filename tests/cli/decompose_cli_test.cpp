@@ -77,8 +77,67 @@ TEST(DecomposeCli, RefusesAnOpenMeshAndBadOptions) {
   auto help = run_subfab("decompose --help");
   EXPECT_EQ(help.exit_code, 0);
   for (const char* option : {"--max-height", "--max-height-abs", "--machine", "--no-orient", "--grid-factor",
-                             "--threads", "--json", "--quiet"})
+                             "--exact", "--max-deviation", "--threads", "--json", "--quiet"})
     EXPECT_NE(help.output.find(option), std::string::npos) << option;
+}
+
+//! A thin wedge (30-degree apex) whose sharp edge runs along (1, 1, 1): no
+//! axis sees both faces at that edge, in the input frame (the six exact
+//! corner positions below, outward faces).
+void write_oblique_wedge(const fs::path& path) {
+  std::ofstream out(path);
+  out << "v 0.1 0.2 0.3\n"
+         "v 0.8886751345948128 -0.3773502691896257 0.08867513459481285\n"
+         "v 0.6773502691896257 -0.5886751345948129 0.5113248654051872\n"
+         "v 0.9660254037844388 1.0660254037844388 1.1660254037844389\n"
+         "v 1.7547005383792516 0.4886751345948131 0.9547005383792517\n"
+         "v 1.5433756729740646 0.2773502691896259 1.377350269189626\n";
+  for (const char* f : {"1 2 3", "4 6 5", "1 5 2", "1 4 5", "2 6 3", "2 5 6", "3 4 1", "3 6 4"}) out << "f " << f << "\n";
+}
+
+TEST(DecomposeCli, InfeasibleFeaturesAreRepairedOrRefusedWithExact) {
+  const fs::path dir = test::temp_dir();
+  const fs::path mesh = dir / "wedge.obj";
+  write_oblique_wedge(mesh);
+  // --exact: refused with the list.
+  auto exact = run_subfab("decompose " + quoted(mesh) + " -o " + quoted(dir / "exact") + " --no-orient --exact");
+  EXPECT_EQ(exact.exit_code, 3) << exact.output;
+  EXPECT_NE(exact.output.find("crease edge(s)"), std::string::npos) << exact.output;
+  EXPECT_EQ(exact.output.find("repairing them"), std::string::npos) << exact.output;
+  EXPECT_FALSE(fs::exists(dir / "exact" / "decomposition.json"));
+  // Default: the repair runs (said on stderr); a cap it cannot meet is exit 3
+  // and says how to relax it.
+  auto tight = run_subfab("decompose " + quoted(mesh) + " -o " + quoted(dir / "tight") +
+                          " --no-orient --max-deviation 1e-7");
+  EXPECT_EQ(tight.exit_code, 3) << tight.output;
+  EXPECT_NE(tight.output.find("repairing them by local smoothing"), std::string::npos) << tight.output;
+  EXPECT_NE(tight.output.find("--max-deviation"), std::string::npos) << tight.output;
+  EXPECT_FALSE(fs::exists(dir / "tight" / "decomposition.json"));
+}
+
+TEST(DecomposeCli, ValidateChecksARecordedRepairedInput) {
+  const fs::path dir = test::temp_dir();
+  const fs::path mesh = test::data_path("joint.off");
+  ASSERT_EQ(run_subfab("decompose " + quoted(mesh) + " -o " + quoted(dir) + " --quiet").exit_code, 0);
+  // Feasible: no repair record, no repaired mesh.
+  std::string json = slurp(dir / "decomposition.json");
+  const std::string none = "\"repair\": null";
+  ASSERT_NE(json.find(none), std::string::npos) << json;
+  EXPECT_FALSE(fs::exists(dir / "input_repaired.obj"));
+  // Record a "repair" whose mesh is the input itself (deviation 0): validate
+  // must check against the named mesh and say so.
+  fs::copy_file(mesh, dir / "input_repaired.off");
+  json.replace(json.find(none), none.size(),
+               "\"repair\": {\"mesh\": \"input_repaired.off\", \"num_features\": 2, \"max_deviation\": 0.0, "
+               "\"max_deviation_fraction\": 0.0, \"mean_deviation\": 0.0}");
+  std::ofstream(dir / "decomposition.json", std::ios::binary) << json;
+  auto v = run_subfab("validate " + quoted(mesh) + " " + quoted(dir));
+  EXPECT_EQ(v.exit_code, 0) << v.output;
+  EXPECT_NE(v.output.find("REPAIRED input"), std::string::npos) << v.output;
+  EXPECT_NE(v.output.find("all checks passed"), std::string::npos) << v.output;
+  // A repaired mesh that is not MESH's repair (bounding boxes too far apart) is refused.
+  fs::copy_file(test::data_path("cross.off"), dir / "input_repaired.off", fs::copy_options::overwrite_existing);
+  EXPECT_EQ(run_subfab("validate " + quoted(mesh) + " " + quoted(dir) + " --quiet").exit_code, 2);
 }
 
 }  // namespace

@@ -19,6 +19,7 @@
 
 #include "subfab/core/progress.h"
 #include "subfab/decompose/carve_blocks.h"
+#include "subfab/decompose/repair_infeasible_features.h"
 #include "subfab/mesh/mesh.h"
 
 namespace subfab {
@@ -32,19 +33,29 @@ struct DecomposeOptions {
   double grid_factor = 1.0;     // --grid-factor: grid spacing = average edge length x this (> 0)
   double cover_time_limit_s = 60.0;  // CBC time limit, seconds
   bool merge = true;            // merge adjacent same-direction blocks (4.3.4)
+  bool repair = true;           // false: --exact, refuse (AlgorithmError) when the chosen frame has infeasible
+                                // features instead of repairing them (repair_infeasible_features, 4.3.5)
+  double max_deviation = 0.005; // --max-deviation: cap on the repair's Hausdorff distance, x bbox diagonal (> 0)
   Progress* progress = nullptr; // stage progress (nullptr = silent)
 };
 
 //! Wall time of each stage, seconds.
 struct DecomposeTimings {
   double orient = 0, field = 0, grow = 0, cover = 0, resolve = 0, carve = 0, total = 0;
+  double repair = 0;  // local repair of infeasible features (0 when none), not part of orient
 };
 
 //! Result of decompose().
 struct DecomposeResult {
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  // canonical = rotation x input
   Mesh canonical;            // the (possibly locally refined) input in the canonical frame (rotate_into_frame: turned, near-equal coordinates snapped)
-  std::size_t num_input_vertices = 0;  // canonical vertices [0, this) are the input's vertices, same ids
+  std::size_t num_input_vertices = 0;  // canonical vertices [0, this) are the input's (or repaired input's) vertices, same ids
+  // Set when the chosen frame had infeasible features and they were repaired
+  // (options.repair): the repaired solid in INPUT coordinates (vertices of
+  // unchanged faces keep the input's exact coordinates), same vertex ids as
+  // the canonical mesh before grow; the blocks decompose it, not the input.
+  std::optional<Mesh> repaired_input;
+  RepairReport repair;       // what the repair found and changed (num_features = 0: nothing repaired)
   double max_height = std::numeric_limits<double>::infinity();  // the height limit used (model units)
   std::vector<Block> blocks; // the blocks, canonical frame
   DecomposeTimings timings;
@@ -61,6 +72,10 @@ struct DecomposeResult {
 //! Decomposes a closed solid into height-field blocks (thesis Chapter 4).
 //! \param input closed, manifold, outward-oriented, self-intersection-free mesh
 //!        (pass it through require_closed_solid first)
+//! When the chosen frame has features no height-field box can cover
+//! (find_infeasible_features()), they are repaired locally first
+//! (repair_infeasible_features(), thesis 4.3.5; result.repaired_input), or,
+//! with options.repair = false, an AlgorithmError lists them.
 //! \throw InvalidArgumentError on bad options; AlgorithmError when a stage fails.
 DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options);
 

@@ -8,7 +8,12 @@
 //!
 //! decomposition.json:
 //!   {"format": "subfab.decomposition", "version": 1,
-//!    "input": {"path", "vertices", "faces", "bbox_diagonal"},
+//!    "input": {"path", "vertices", "faces", "bbox_diagonal",
+//!              "repair": null, or after a repair of infeasible features (4.3.5) {"mesh": "input_repaired.obj"
+//!              (OUTDIR-relative, input coordinates), "vertices", "faces", "num_features", "num_creases",
+//!              "num_vertices", "num_rounds", "num_faces_removed", "num_faces_new", "max_deviation",
+//!              "mean_deviation" (model units), "max_deviation_fraction", "mean_deviation_fraction" (x bbox
+//!              diagonal), "hausdorff_error" (model units), "max_deviation_cap_fraction"}},
 //!    "rotation": 3x3 (canonical = rotation x input),
 //!    "parameters": {"max_height_fraction", "max_height", "machine", "orient", "grid_factor"},
 //!    "blocks": [{"id", "mesh", "machine_mesh", "direction" (unit, input coordinates),
@@ -30,6 +35,9 @@
 #include "subfab/mesh/mesh.h"
 
 namespace subfab {
+
+//! File name (in OUTDIR) of the repaired input, named by "input"."repair"."mesh".
+inline constexpr const char* kRepairedInputFile = "input_repaired.obj";
 
 //! One block as exported (input coordinates).
 struct ExportedBlock {

@@ -8,7 +8,7 @@
 //! band around each feature moves.
 //!
 //! A feature is infeasible when refinement can never help (see
-//! src/decompose/local_infeasible_features.h, exact): a crease whose two
+//! find_infeasible_features(), exact): a crease whose two
 //! sides no axis-aligned direction sees together (normals more than 90
 //! degrees apart, edge in no axis-aligned plane), or a vertex whose
 //! surrounding faces no box corner can separate (a spike or thin cone).
@@ -47,7 +47,7 @@ namespace subfab {
 //! Options of repair_infeasible_features().
 struct RepairOptions {
   int max_rounds = 40;          // find/refine/smooth rounds before giving up
-  double max_deviation = 0.01;  // cap on the deviation from the input, fraction of the bbox diagonal (> 0)
+  double max_deviation = 0.005; // cap on the deviation from the input, fraction of the bbox diagonal (> 0)
   double edge_length = 0.004;   // band faces are refined until their longest edge is below this, fraction of
                                 // the bbox diagonal (> 0); sets the fillet size (a few such lengths)
   int band_rings = 2;           // edge rings around feature vertices that are refined and smoothed (>= 1)
@@ -64,11 +64,11 @@ struct RepairReport {
   int num_creases = 0;           // of which infeasible crease edges
   int num_vertices = 0;          // of which infeasible vertices
   int num_rounds = 0;            // refine/smooth rounds used (0 if nothing to repair)
-  int num_vertices_moved = 0;    // vertices of the result away from their reference point on the input
-  int num_faces_added = 0;       // faces of the result minus faces of the input (local refinement)
+  int num_faces_removed = 0;     // faces of the input that are not faces of the result
+  int num_faces_new = 0;         // faces of the result that are not faces of the input (the repaired patches)
   double bbox_diagonal = 0;      // of the input, model units
-  double max_deviation = 0;      // symmetric Hausdorff distance input <-> result, model units
-  double max_deviation_bound = 0;  // max |vertex - reference|, an upper bound of max_deviation, model units
+  double max_deviation = 0;      // symmetric Hausdorff distance input <-> result, model units (within hausdorff_error)
+  double hausdorff_error = 0;    // error bound of max_deviation, model units
   double mean_deviation = 0;     // area-weighted mean distance of the changed surface to the input, model units
   double max_deviation_fraction() const { return bbox_diagonal > 0 ? max_deviation / bbox_diagonal : 0; }
   double mean_deviation_fraction() const { return bbox_diagonal > 0 ? mean_deviation / bbox_diagonal : 0; }
@@ -76,8 +76,8 @@ struct RepairReport {
 
 //! Result of repair_infeasible_features().
 struct RepairResult {
-  Mesh mesh;           // repaired mesh (same as the input, bit for bit, if it had no infeasible feature):
-                       // input vertices keep their ids, new vertices are appended
+  Mesh mesh;           // repaired mesh (the input, bit for bit, if it had no infeasible feature): input vertices
+                       // keep their ids, new vertices are appended; faces away from the features are unchanged
   RepairReport report;
 };
 
@@ -87,7 +87,7 @@ struct RepairResult {
 //!        triangle mesh IN THE DECOMPOSITION FRAME (after orient: the
 //!        features depend on the frame), model units.
 //! \return the repaired mesh (same frame and units) and the report; after
-//!         it the exact local test finds nothing.
+//!         it find_infeasible_features() finds nothing.
 //! \throw InvalidArgumentError on invalid options.
 //! \throw AlgorithmError naming a feature if it cannot be repaired within
 //!        `max_rounds` and `max_deviation`, or if the repaired mesh would not
