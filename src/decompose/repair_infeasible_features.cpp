@@ -10,9 +10,9 @@
 #include "decompose/surface_deviation.h"
 #include "subfab/checks/require_closed_solid.h"
 #include "subfab/core/error.h"
-#include "subfab/core/parallel.h"
 #include "subfab/decompose/find_infeasible_features.h"
 #include "subfab/decompose/refine_mesh.h"
+#include "subfab/mesh/taubin_smooth.h"
 
 namespace subfab {
 namespace {
@@ -31,8 +31,8 @@ void check_options(const RepairOptions& o) {
   if (o.widen_every < 1) throw InvalidArgumentError("repair: widen_every must be >= 1");
   if (o.smoothing_steps < 1) throw InvalidArgumentError("repair: smoothing_steps must be >= 1");
   if (!(o.lambda > 0 && o.lambda < 1)) throw InvalidArgumentError("repair: Taubin lambda must be in (0, 1)");
-  if (!(o.mu == 0 || (o.mu < -o.lambda && std::isfinite(o.mu))))
-    throw InvalidArgumentError("repair: Taubin mu must be 0 (plain Laplacian) or finite and below -lambda");
+  if (!(o.mu == 0 || (o.mu < -o.lambda && o.mu > -1)))
+    throw InvalidArgumentError("repair: Taubin mu must be 0 (plain Laplacian) or in (-1, -lambda)");
 }
 
 //! Vertex neighbours (CSR, sorted, unique).
@@ -101,37 +101,6 @@ double longest_edge(const Mesh& mesh, const Triangle& t) {
                      mesh.vertices[static_cast<std::size_t>(t[(e + 1) % 3])])
                         .norm());
   return l;
-}
-
-//! One uniform Laplacian step p += factor * (mean of neighbours - p) on the
-//! movable vertices (Jacobi, parallel). A coordinate that the vertex shares
-//! with all its neighbours (an axis-aligned flat or line) is kept exactly.
-void laplacian_step(Mesh& mesh, const Neighbours& n, const std::vector<int>& movable, double factor) {
-  std::vector<Vec3> moved(movable.size());
-  parallel_for(
-      0, movable.size(),
-      [&](std::size_t i) {
-        const int v = movable[i];
-        const Vec3& p = mesh.vertices[static_cast<std::size_t>(v)];
-        Vec3 mean = Vec3::Zero();
-        std::array<bool, 3> shared{true, true, true};
-        for (int j = n.begin(v); j < n.end(v); ++j) {
-          const Vec3& q = mesh.vertices[static_cast<std::size_t>(n.ids[static_cast<std::size_t>(j)])];
-          mean += q;
-          for (int k = 0; k < 3; ++k)
-            shared[static_cast<std::size_t>(k)] = shared[static_cast<std::size_t>(k)] && q[k] == p[k];
-        }
-        const int count = n.end(v) - n.begin(v);
-        Vec3 r = p;
-        if (count > 0) {
-          const Vec3 step = factor * (mean / count - p);
-          for (int k = 0; k < 3; ++k)
-            if (!shared[static_cast<std::size_t>(k)]) r[k] = p[k] + step[k];
-        }
-        moved[i] = r;
-      },
-      256);
-  for (std::size_t i = 0; i < movable.size(); ++i) mesh.vertices[static_cast<std::size_t>(movable[i])] = moved[i];
 }
 
 std::string summary(const Mesh& mesh, const FeasibilityResult& features) {
@@ -222,10 +191,13 @@ RepairResult repair_infeasible_features(const Mesh& input, const RepairOptions& 
     std::vector<int> movable;
     for (std::size_t v = 0; v < dist.size(); ++v)
       if (dist[v] >= 0) movable.push_back(static_cast<int>(v));
-    for (int s = 0; s < options.smoothing_steps; ++s) {
-      laplacian_step(mesh, n, movable, options.lambda);
-      if (options.mu != 0) laplacian_step(mesh, n, movable, options.mu);
-    }
+    TaubinOptions taubin;
+    taubin.num_passes = options.smoothing_steps;
+    taubin.lambda = options.lambda;
+    taubin.mu = options.mu;
+    taubin.weights = TaubinWeights::Uniform;
+    taubin.keep_axis_aligned = true;  // axis-aligned flats stay exactly flat
+    taubin_smooth(mesh, movable, taubin);
     // d. Deviation cap (max vertex displacement bounds the Hausdorff distance).
     const double bound = max_displacement(mesh, reference);
     if (bound > cap) {
