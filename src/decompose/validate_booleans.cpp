@@ -106,7 +106,12 @@ double blocks_overlap(const Mesh& a, const Mesh& b) {
     }
     if (clipped) {
       if (ea.number_of_faces() == 0 || eb.number_of_faces() == 0) return 0.0;
-      if (const auto v = exact_overlap(std::move(ea), std::move(eb))) return *v;
+      try {
+        if (const auto v = exact_overlap(std::move(ea), std::move(eb))) return *v;
+      } catch (const AlgorithmError&) {
+        // CGAL found the clipped pieces self-intersecting (a clip plane through
+        // a block face can leave slivers it refuses): use the whole blocks.
+      }
     }
   }
   if (const auto v = exact_overlap(detail::to_exact(a), detail::to_exact(b))) return *v;

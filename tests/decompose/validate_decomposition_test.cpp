@@ -3,6 +3,10 @@
 
 #include <gtest/gtest.h>
 
+#include <map>
+#include <tuple>
+
+
 #include "decompose/block_test_shapes.h"
 
 namespace subfab {
@@ -144,6 +148,63 @@ TEST(ValidateDecomposition, OverlapAndOutsideVolumesAreExact) {
   EXPECT_NEAR(blocks_overlap(a, box_solid({2, 2, 0}, {3, 3, 2})), 0.0, 1e-12);  // touching along an edge
   EXPECT_NEAR(volume_outside(b, a), 7.0, 1e-12);
   EXPECT_NEAR(volume_outside(box_solid({0, 0, 0}, {1, 1, 2}), a), 0.0, 1e-12);  // flush with faces
+}
+
+//! The cube [0, size]^3 with every face split into n x n squares (2 triangles
+//! each), outward oriented: blocks share parts of its faces.
+Mesh tessellated_cube(double size, int n) {
+  Mesh m;
+  std::map<std::tuple<int, int, int>, int> ids;
+  auto vertex = [&](int i, int j, int k) {
+    auto [it, inserted] = ids.emplace(std::make_tuple(i, j, k), static_cast<int>(m.vertices.size()));
+    if (inserted) m.vertices.emplace_back(size * i / n, size * j / n, size * k / n);
+    return it->second;
+  };
+  for (int axis = 0; axis < 3; ++axis)
+    for (int side = 0; side <= n; side += n)
+      for (int a = 0; a < n; ++a)
+        for (int b = 0; b < n; ++b) {
+          // (u, v) = the next two axes after `axis`: e_u x e_v = e_axis.
+          auto at = [&](int du, int dv) {
+            int c[3];
+            c[axis] = side;
+            c[(axis + 1) % 3] = a + du;
+            c[(axis + 2) % 3] = b + dv;
+            return vertex(c[0], c[1], c[2]);
+          };
+          const int p00 = at(0, 0), p10 = at(1, 0), p11 = at(1, 1), p01 = at(0, 1);
+          if (side == n) {
+            m.faces.push_back({p00, p10, p11});
+            m.faces.push_back({p00, p11, p01});
+          } else {
+            m.faces.push_back({p00, p11, p10});
+            m.faces.push_back({p00, p01, p11});
+          }
+        }
+  return m;
+}
+
+TEST(ValidateDecomposition, OutsideVolumesOnATessellatedCube) {
+  const Mesh cube = tessellated_cube(4.0, 8);  // 768 faces
+  ASSERT_TRUE(check_closed_solid(cube).ok());
+  ASSERT_NEAR(check_closed_solid(cube).volume, 64.0, 1e-12);
+  struct Case {
+    Vec3 min, max;
+    double outside;
+  };
+  const std::vector<Case> cases = {
+      {{0, 0, 0}, {1, 1, 1}, 0.0},             // corner block, flush with three input faces
+      {{-0.5, 0, 0}, {1, 1, 1}, 0.5},          // sticks out through one face
+      {{3.5, 3.5, 3.5}, {4.5, 4.5, 4.5}, 0.875},  // through a corner: 1 - 0.5^3
+      {{1.5, 1.5, 1.5}, {2.5, 2.5, 2.5}, 0.0},  // deep inside: no input face near it
+      {{1.25, 0, 0.5}, {2.75, 0.5, 3.0}, 0.0},  // flush with a face, off the tessellation grid
+      {{1, 1, -2}, {2, 2, -1}, 1.0},           // below the cube, bounding boxes apart
+  };
+  for (const Case& c : cases) {
+    const double v = volume_outside(box_solid(c.min, c.max), cube);
+    EXPECT_NEAR(v, c.outside, 1e-12) << c.min.transpose() << " .. " << c.max.transpose();
+  }
+  EXPECT_NEAR(volume_outside(box_solid({-1, -1, -1}, {5, 5, 3.5}), cube), 6 * 6 * 4.5 - 4 * 4 * 3.5, 1e-9);
 }
 
 TEST(ValidateDecomposition, CoverageFindsTheUncoveredPart) {
