@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
-#include <iterator>
 #include <limits>
 #include <map>
 #include <tuple>
@@ -183,12 +182,22 @@ ResolveResult resolve_overlaps(const SolidIndex& index, std::vector<HeightBox> b
   };
   callbacks.trims = [&](const HeightBox& first, const HeightBox& second) {
     return conflict_trims(index, first, second, callbacks.size, [&](const HeightBox& old_box, const HeightBox& trimmed) {
-      // Every face the box stops covering is covered by another live box.
+      // A trim drops the slab old \ trimmed, so it must be droppable like a
+      // split piece: every triangle touching the slab is covered by the
+      // trimmed box or by another live box. Checking only the faces the old
+      // box covered (entirely) is not enough: after splits a triangle can be
+      // covered by several boxes together and by none alone (its cover count
+      // is 0), and the slab may hold the only part of it that is covered.
       const std::vector<int> before = index.faces_covered(old_box);
       const std::vector<int> after = index.faces_covered(trimmed);
-      std::vector<int> lost;
-      std::set_difference(before.begin(), before.end(), after.begin(), after.end(), std::back_inserter(lost));
-      return std::all_of(lost.begin(), lost.end(), [&](int f) { return cover_count[static_cast<std::size_t>(f)] >= 2; });
+      auto covered_elsewhere = [&](int f) {
+        if (std::binary_search(after.begin(), after.end(), f)) return true;
+        const bool old_covers = std::binary_search(before.begin(), before.end(), f);
+        return cover_count[static_cast<std::size_t>(f)] - (old_covers ? 1 : 0) >= 1;
+      };
+      for (const Box3& slab : box_difference(old_box.box, trimmed.box, {0, 1, 2}))
+        if (!split_piece_droppable(index, HeightBox{slab, old_box.axis, -1}, covered_elsewhere)) return false;
+      return true;
     });
   };
   BoxOrderOptions order_options;

@@ -14,8 +14,9 @@
 //!      src/decompose/order_boxes.h for why this is exact for a valid B2);
 //!   2. per strongly connected component, a shortest cycle is broken by
 //!      trimming one of its boxes (one face moved inward just enough to
-//!      remove a conflict edge, when every face it stops covering is covered
-//!      by another live box; the least removed volume first), or else by
+//!      remove a conflict edge, when the removed slab could be dropped like a
+//!      split piece: every triangle touching it is covered by the trimmed box
+//!      or by another live box; the least removed volume first), or else by
 //!      splitting the head b2 of one of its edges b1 -> b2 into sub-boxes of
 //!      B2 \ B1 (sub-boxes of a valid box are valid), choosing the edge whose
 //!      smallest kept piece is largest; a piece is dropped when its block is
@@ -24,7 +25,8 @@
 //!   3. order: Kahn's algorithm on the reversed graph, smallest block first.
 //!
 //! Surface coverage is kept: a split keeps the union of the boxes (B1 stays,
-//! the pieces fill B2 \ B1), and a dropped piece either holds no solid, or
+//! the pieces fill B2 \ B1), a trim is a split into the trimmed box and a
+//! dropped slab, and a dropped piece or slab either holds no solid, or
 //! touches no surface, or every triangle it touches lies in another live box
 //! with the solid on that box's side (cover counts are kept up to date over
 //! splits), so every surface point that had solid of some box next to it
