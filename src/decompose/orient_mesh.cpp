@@ -282,14 +282,13 @@ OrientResult orient_mesh(const Mesh& mesh, const OrientOptions& options) {
   }
   const std::size_t num_twists = static_cast<std::size_t>(options.num_twists);
   const std::size_t num_candidates = axes.size() * num_twists;
+  const auto coarse_frame = [&](std::size_t c) {
+    const double twist = 0.5 * M_PI * static_cast<double>(c % num_twists) / static_cast<double>(num_twists);
+    return frame_from_axis(axes[c / num_twists], twist);
+  };
   std::vector<double> coarse(num_candidates);
   parallel_for(
-      0, num_candidates,
-      [&](std::size_t c) {
-        const double twist = 0.5 * M_PI * static_cast<double>(c % num_twists) / static_cast<double>(num_twists);
-        coarse[c] = l1_sum(clustered, frame_from_axis(axes[c / num_twists], twist));
-      },
-      64);
+      0, num_candidates, [&](std::size_t c) { coarse[c] = l1_sum(clustered, coarse_frame(c)); }, 64);
   std::vector<std::size_t> ranked(num_candidates);
   std::iota(ranked.begin(), ranked.end(), 0);
   std::stable_sort(ranked.begin(), ranked.end(), [&](std::size_t a, std::size_t b) { return coarse[a] < coarse[b]; });
@@ -298,8 +297,7 @@ OrientResult orient_mesh(const Mesh& mesh, const OrientOptions& options) {
   const double min_similarity = 1.0 + 2.0 * std::cos(6.0 * M_PI / 180.0);
   for (std::size_t c : ranked) {
     if (static_cast<int>(starts.size()) > options.num_refined) break;
-    const double twist = 0.5 * M_PI * static_cast<double>(c % num_twists) / static_cast<double>(num_twists);
-    const Eigen::Matrix3d r = frame_from_axis(axes[c / num_twists], twist);
+    const Eigen::Matrix3d r = coarse_frame(c);
     bool distinct = true;
     for (const auto& s : starts) distinct = distinct && symmetric_similarity(r, s, symmetries) < min_similarity;
     if (distinct) starts.push_back(r);
@@ -398,6 +396,61 @@ OrientResult orient_mesh(const Mesh& mesh, const OrientOptions& options) {
       result.candidates[c].num_infeasible = static_cast<long>(checks[c].size());
       if (checks[c].feasible()) feasible = c;
     }
+    if (!feasible && options.feasibility_budget > 0) {
+      // 6. Search the coarse frames, best coarse energy first, for a feasible one.
+      const auto is_feasible = [&](const Eigen::Matrix3d& r) {
+        return find_infeasible_features(rotate_into_frame(mesh, r, options.snap_tolerance)).feasible();
+      };
+      const double per_frame = std::max(1.0, static_cast<double>(mesh.num_faces()));
+      const std::size_t max_frames =
+          std::min(ranked.size(), static_cast<std::size_t>(options.feasibility_budget / per_frame));
+      constexpr std::size_t batch = 16;
+      std::optional<Eigen::Matrix3d> found;
+      for (std::size_t b = 0; b < max_frames && !found; b += batch) {
+        const std::size_t e = std::min(max_frames, b + batch);
+        std::vector<Eigen::Matrix3d> frames(e - b);
+        std::vector<char> ok(e - b, 0);
+        parallel_for(
+            b, e,
+            [&](std::size_t i) {
+              frames[i - b] = orthonormalize(closest_to_identity(coarse_frame(ranked[i]), symmetries));
+              ok[i - b] = is_feasible(frames[i - b]) ? 1 : 0;
+            },
+            1);
+        result.num_searched = e;
+        for (std::size_t i = 0; i < ok.size() && !found; ++i)
+          if (ok[i]) found = frames[i];
+      }
+      if (found) {
+        // Local refinement on the exact energy; infeasible frames are walls.
+        Eigen::Matrix3d r = *found;
+        double e = l1_sum(w, r);
+        const int evals = static_cast<int>(std::min<double>(options.feasibility_refine_evals,
+                                                            0.25 * options.feasibility_budget / per_frame));
+        if (evals >= 8) {
+          const auto energy = [&](const Eigen::Matrix3d& q, double) {
+            const Eigen::Matrix3d o = orthonormalize(q);
+            return is_feasible(o) ? l1_sum(w, o) : INFINITY;
+          };
+          for (double step : {0.02, 1e-3}) {
+            const auto [r2, e2] = nelder_mead(energy, r, step, 1e-7, evals / 2);
+            const Eigen::Matrix3d o = orthonormalize(r2);
+            if (e2 < e && is_feasible(o)) {
+              r = o;
+              e = l1_sum(w, r);
+            }
+          }
+        }
+        OrientCandidate c;
+        c.rotation = r;
+        c.energy = e / area;
+        c.num_infeasible = 0;
+        result.candidates.push_back(c);
+        checks.emplace_back();
+        feasible = result.candidates.size() - 1;
+        result.found_by_search = true;
+      }
+    }
     if (feasible) {
       result.chosen = *feasible;
       result.num_rejected = *feasible;
@@ -418,6 +471,9 @@ OrientResult orient_mesh(const Mesh& mesh, const OrientOptions& options) {
         << starts.size() << " refined, " << result.candidates.size() << " candidate frames";
     if (options.check_feasibility) {
       msg << ", " << result.num_rejected << " rejected for creases or corners no axis-aligned block can cover";
+      if (result.num_searched > 0)
+        msg << "; " << result.num_searched << " coarse frames searched for a feasible one, "
+            << (result.found_by_search ? "found" : "none found");
       if (!result.infeasible.feasible()) msg << "; none is free of them, the fewest kept";
     }
     msg << ")";

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// `subfab decompose` on a model with sharp creases in every frame it tries:
-// an early, explained failure (exit code 3) instead of a failure deep in grow.
+// `subfab decompose --exact` on a model with features no axis-aligned block
+// can cover in every frame it tries: an early, explained failure (exit code
+// 3) instead of a failure deep in grow.
 #include <gtest/gtest.h>
 
 #include "test_support.h"
@@ -14,13 +15,17 @@ using test::run_subfab;
 
 TEST(DecomposeCli, ImpossibleCreasesFailEarlyWithTheReason) {
   const fs::path dir = test::temp_dir();
-  const fs::path mesh = test::data_path("part.off");  // CAD part, creases off the axis planes in every frame
+  // anchor.off: two fluke tips (cone tips) that no axis sees, in every frame
+  // (part.off, with sharp oblique creases, has feasible frames: orient finds one).
+  const fs::path mesh = test::data_path("anchor.off");
   const auto r = run_subfab("decompose " + quoted(mesh) + " -o " + quoted(dir / "out") + " --exact");
   EXPECT_EQ(r.exit_code, 3) << r.output;
   EXPECT_NE(r.output.find("no exact height-field decomposition exists in any orientation tried"), std::string::npos)
       << r.output;
   EXPECT_NE(r.output.find("crease edge(s)"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("edge ("), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("corner vertex(es)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("vertex ("), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("coarse frames searched for a feasible one, none found"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("--no-orient"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("rejected for creases or corners"), std::string::npos) << r.output;  // orient's report
   EXPECT_EQ(r.output.find("grow"), std::string::npos) << r.output;  // failed before the grow stage

@@ -27,8 +27,15 @@
 //!      axes (see OrientOptions::keep_frame_area);
 //!   5. feasibility (find_infeasible_features.h): the first candidate in
 //!      preference order whose frame has no crease or corner that no
-//!      axis-aligned height-field box can cover; if every candidate has
-//!      some, the one with the fewest (the caller then fails early).
+//!      axis-aligned height-field box can cover;
+//!   6. if every candidate has some (typical of CAD parts with sharp oblique
+//!      creases: the energy optima put a crease where no axis sees both of
+//!      its faces), the coarse frames of step 2 are tested in order of
+//!      energy, in parallel batches, until one is feasible (at most
+//!      `feasibility_budget` face tests in all); the first feasible one is
+//!      refined locally on the exact energy, every step kept feasible
+//!      (exact test). If none is found, the candidate with the fewest
+//!      features (the caller then repairs them or fails early).
 #pragma once
 
 #include <Eigen/Core>
@@ -70,6 +77,14 @@ struct OrientOptions {
   double snap_tolerance = 1e-9;  // fraction of the bounding-box diagonal (0 = no snapping)
   int num_candidates = 6;       // best distinct local optima refined exactly and ranked (besides the input frame)
   bool check_feasibility = true;  // skip candidate frames with infeasible creases/corners (find_infeasible_features)
+  // Step 6: number of face tests (frames x faces of the exact feasibility
+  // test) spent searching the coarse frames for a feasible one when no
+  // candidate is; the exact test runs at roughly 1e5 faces per second per
+  // core, so the default costs at most about 5-10 s on 2 cores. 0 = no search.
+  double feasibility_budget = 1e6;
+  // Exact-energy evaluations refining the frame found in step 6, each with
+  // an exact feasibility test (at most a quarter of the budget; 0 = none).
+  int feasibility_refine_evals = 120;
   Progress* progress = nullptr;  // info line with the energies (nullptr = silent)
 };
 
@@ -89,6 +104,8 @@ struct OrientResult {
   std::vector<OrientCandidate> candidates;  // every candidate frame, in preference order
   std::size_t chosen = 0;        // index of the chosen candidate
   std::size_t num_rejected = 0;  // candidates with infeasible features ahead of the chosen one (all when none is free of them)
+  std::size_t num_searched = 0;  // coarse frames tested in step 6 (0 when a candidate was feasible)
+  bool found_by_search = false;  // the chosen frame comes from step 6 (it is the last candidate)
   FeasibilityResult infeasible;  // infeasible features of the chosen frame (empty when feasible or unchecked)
 };
 
