@@ -40,6 +40,7 @@ struct PlaneSet {
       values[static_cast<std::size_t>(k)].push_back(b.max[k]);
     }
   }
+  void add(int k, double value) { values[static_cast<std::size_t>(k)].push_back(value); }
   void finish() {
     for (auto& v : values) {
       std::sort(v.begin(), v.end());
@@ -82,9 +83,19 @@ bool on_input_surface(const Mesh& solid, const detail::SolidIndex& index, const 
   return false;
 }
 
+//! Extra planes that cut a box region, per axis (sorted, each strictly
+//! inside the box): the pieces on either side become separate blocks.
+using Cuts = std::array<std::vector<double>, 3>;
+
+bool is_cut(const Cuts& cuts, int k, double v) {
+  const auto& c = cuts[static_cast<std::size_t>(k)];
+  return std::binary_search(c.begin(), c.end(), v);
+}
+
 //! Cuts region = box \ (union of `holes`) into disjoint boxes (grid cells of
-//! the hole planes, merged into runs along x then y).
-std::vector<Box3> region_cells(const Box3& box, const std::vector<Box3>& holes) {
+//! the hole planes and of `cuts`, merged into runs along x then y, never
+//! across a plane of `cuts`).
+std::vector<Box3> region_cells(const Box3& box, const std::vector<Box3>& holes, const Cuts& cuts) {
   std::array<std::vector<double>, 3> planes;
   for (int k = 0; k < 3; ++k) {
     auto& p = planes[static_cast<std::size_t>(k)];
@@ -92,6 +103,7 @@ std::vector<Box3> region_cells(const Box3& box, const std::vector<Box3>& holes) 
     for (const Box3& h : holes)
       for (double v : {h.min[k], h.max[k]})
         if (v > box.min[k] && v < box.max[k]) p.push_back(v);
+    p.insert(p.end(), cuts[static_cast<std::size_t>(k)].begin(), cuts[static_cast<std::size_t>(k)].end());
     std::sort(p.begin(), p.end());
     p.erase(std::unique(p.begin(), p.end()), p.end());
   }
@@ -119,7 +131,7 @@ std::vector<Box3> region_cells(const Box3& box, const std::vector<Box3>& holes) 
           continue;
         }
         std::size_t e = i + 1;
-        while (e < nx && is_free(e)) ++e;
+        while (e < nx && !is_cut(cuts, 0, planes[0][e]) && is_free(e)) ++e;
         Box3 r = cell(i, j, k);
         r.max.x() = planes[0][e];
         runs.push_back(r);
@@ -132,7 +144,7 @@ std::vector<Box3> region_cells(const Box3& box, const std::vector<Box3>& holes) 
     bool joined = false;
     for (Box3& m : merged)
       if (m.min.x() == r.min.x() && m.max.x() == r.max.x() && m.min.z() == r.min.z() &&
-          m.max.z() == r.max.z() && m.max.y() == r.min.y()) {
+          m.max.z() == r.max.z() && m.max.y() == r.min.y() && !is_cut(cuts, 1, r.min.y())) {
         m.max.y() = r.max.y();
         joined = true;
         break;
@@ -439,8 +451,90 @@ struct BoxPieces {
   std::vector<Mesh> pieces;
   std::size_t num_dropped = 0;
   bool split_region = false;
+  std::size_t num_pinch_cuts = 0;  // planes cut through pinch points
+  std::size_t num_unresolved_pinches = 0;  // pinch points no cut separated
   detail::RoundingReport rounding;
 };
+
+//! The points where a connected piece of `mesh` touches itself: two of its
+//! vertices at the same exact point. That happens where the solid surface
+//! touches a face of the region from inside (at a vertex, or along an edge
+//! lying in the face): the solid there is not a 2-manifold (its thickness
+//! drops to zero), and split_soup() or CGAL can only give the point one
+//! vertex per umbrella, so the block would touch itself. Sorted, unique.
+std::vector<ExactPoint> pinch_points(ExactMesh& mesh) {
+  std::vector<ExactPoint> out;
+  if (mesh.number_of_faces() == 0) return out;
+  auto fcc = mesh.add_property_map<FaceIndex, std::size_t>("f:pinch_cc", 0).first;
+  PMP::connected_components(mesh, fcc);
+  std::map<ExactPoint, std::vector<std::size_t>, ExactPointLess> components_at;
+  for (VertexIndex v : mesh.vertices()) {
+    if (mesh.is_isolated(v)) continue;
+    HalfedgeIndex h = mesh.halfedge(v);
+    if (mesh.is_border(h)) h = mesh.opposite(h);
+    std::vector<std::size_t>& at = components_at[mesh.point(v)];
+    const std::size_t c = fcc[mesh.face(h)];
+    if (std::find(at.begin(), at.end(), c) != at.end())
+      out.push_back(mesh.point(v));
+    else
+      at.push_back(c);
+  }
+  mesh.remove_property_map(fcc);
+  std::sort(out.begin(), out.end(), ExactPointLess());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+//! Is p on the face of `b` in plane x_k = b.min[k] or b.max[k] (closed)?
+bool on_box_face(const ExactPoint& p, const Box3& b, int k) {
+  if (p[k] != FT(b.min[k]) && p[k] != FT(b.max[k])) return false;
+  for (int j = 0; j < 3; ++j)
+    if (j != k && (p[j] < FT(b.min[j]) || p[j] > FT(b.max[j]))) return false;
+  return true;
+}
+
+//! Adds, for each pinch point, one plane through it to `cuts`: the first
+//! axis along which the point has a double coordinate strictly inside `box`,
+//! not cut yet, and the point lies on no face of a hole across that axis (a
+//! plane across the region faces the surface touches splits the
+//! zero-thickness point between two blocks, each a 2-manifold there).
+//! Returns false when no point got one.
+bool add_pinch_cuts(const std::vector<ExactPoint>& pinches, const Box3& box, const std::vector<Box3>& holes,
+                    Cuts& cuts, std::size_t& num_added) {
+  bool added = false;
+  for (const ExactPoint& p : pinches)
+    for (int k = 0; k < 3; ++k) {
+      const double v = CGAL::to_double(CGAL::exact(p[k]));
+      if (FT(v) != p[k] || !(v > box.min[k] && v < box.max[k]) || is_cut(cuts, k, v)) continue;
+      if (std::any_of(holes.begin(), holes.end(), [&](const Box3& h) { return on_box_face(p, h, k); })) continue;
+      auto& c = cuts[static_cast<std::size_t>(k)];
+      c.insert(std::upper_bound(c.begin(), c.end(), v), v);
+      added = true;
+      ++num_added;
+      break;
+    }
+  return added;
+}
+
+//! solid ∩ (box \ ∪ holes) as exact pieces, each box of the grid that
+//! `cuts` make of `box` on its own: clipped, then the holes overlapping it
+//! subtracted. False when a difference would not be a 2-manifold.
+bool carve_region(const Mesh& solid, const detail::SolidIndex& index, const Box3& box,
+                  const std::vector<Box3>& holes, const Cuts& cuts, std::vector<ExactMesh>& out) {
+  for (const Box3& cell : region_cells(box, {}, cuts))
+    for (ExactMesh& piece : clip_to_box(solid, index, cell)) {
+      for (const Box3& h : holes) {
+        if (piece.number_of_faces() == 0) break;
+        if (!h.overlaps(cell)) continue;
+        ExactMesh cutter = detail::box_mesh(h);
+        ExactMesh result;
+        if (!PMP::corefine_and_compute_difference(piece, cutter, result)) return false;
+        piece = std::move(result);
+      }
+      out.push_back(std::move(piece));
+    }
+  return true;
+}
 
 //! Splits `mesh` into connected pieces and keeps those touching the input surface.
 void collect_pieces(ExactMesh& mesh, const Mesh& solid, const detail::SolidIndex& index, const PlaneSet& planes,
@@ -511,41 +605,48 @@ void carve_in_arena(const Mesh& solid, const detail::SolidIndex& index, const st
                     std::size_t i, BoxPieces& out) {
   const Box3& box = boxes[i].box;
   std::vector<Box3> holes;
-  PlaneSet planes;
-  planes.add(box);
   for (std::size_t j = 0; j < i; ++j) {
     const Box3& other = boxes[j].box;
     if (!other.overlaps(box)) continue;
     if (other.contains(box.min) && other.contains(box.max)) return;  // fully taken
     holes.push_back(other);
-    planes.add(other);
   }
-  planes.finish();
-
-  std::vector<ExactMesh> pieces = clip_to_box(solid, index, box);
-  bool manifold = true;
-  for (ExactMesh& piece : pieces) {
-    for (const Box3& h : holes) {
-      if (piece.number_of_faces() == 0) break;
-      ExactMesh cutter = detail::box_mesh(h);
-      ExactMesh result;
-      if (!PMP::corefine_and_compute_difference(piece, cutter, result)) {
-        manifold = false;
-        break;
-      }
-      piece = std::move(result);
+  // Carve the region; where a piece touches itself (pinch_points), cut the
+  // region through the pinch and carve again (a cut plane may touch the
+  // surface elsewhere: then that contact is cut in the next round; a contact
+  // on a region edge may need a second plane).
+  constexpr int kMaxPinchRounds = 8;
+  Cuts cuts;
+  std::vector<ExactMesh> pieces;
+  for (int round = 0;; ++round) {
+    pieces.clear();
+    out.split_region = !carve_region(solid, index, box, holes, cuts, pieces);
+    if (out.split_region) {
+      // A difference would not be a 2-manifold: cut the region into disjoint
+      // boxes and clip each one (clip_to_box splits non-manifold results).
+      pieces.clear();
+      for (const Box3& cell : region_cells(box, holes, cuts))
+        for (ExactMesh& part : clip_to_box(solid, index, cell)) pieces.push_back(std::move(part));
     }
-    if (!manifold) break;
+    std::vector<ExactPoint> pinches;
+    for (ExactMesh& piece : pieces)
+      for (const ExactPoint& p : pinch_points(piece)) pinches.push_back(p);
+    if (pinches.empty()) break;
+    std::sort(pinches.begin(), pinches.end(), ExactPointLess());
+    if (round == kMaxPinchRounds || !add_pinch_cuts(pinches, box, holes, cuts, out.num_pinch_cuts)) {
+      // No axis-aligned plane through the contacts left to try: keep the
+      // pieces (finalize_blocks() reports the block that touches itself).
+      out.num_unresolved_pinches = pinches.size();
+      break;
+    }
   }
-  if (manifold) {
-    for (ExactMesh& piece : pieces) collect_pieces(piece, solid, index, planes, out);
-    return;
-  }
-  // A difference would not be a 2-manifold: cut the region into disjoint
-  // boxes and clip each one (clip_to_box splits non-manifold results).
-  out.split_region = true;
-  for (const Box3& cell : region_cells(box, holes))
-    for (ExactMesh& part : clip_to_box(solid, index, cell)) collect_pieces(part, solid, index, planes, out);
+  PlaneSet planes;
+  planes.add(box);
+  for (const Box3& h : holes) planes.add(h);
+  for (int k = 0; k < 3; ++k)
+    for (double v : cuts[static_cast<std::size_t>(k)]) planes.add(k, v);
+  planes.finish();
+  for (ExactMesh& piece : pieces) collect_pieces(piece, solid, index, planes, out);
 }
 
 //! The pieces of box i, computed in a private arena (see deterministic_arena.h)
@@ -637,6 +738,9 @@ CarveResult carve_blocks(const Mesh& solid, const std::vector<HeightBox>& ordere
     BoxPieces& p = per_box[i];
     result.num_dropped_pieces += p.num_dropped;
     result.num_split_regions += p.split_region ? 1 : 0;
+    result.num_pinched_regions += p.num_pinch_cuts > 0 ? 1 : 0;
+    result.num_pinch_cuts += p.num_pinch_cuts;
+    result.num_unresolved_pinches += p.num_unresolved_pinches;
     result.num_degenerate_faces += p.rounding.num_degenerate_faces;
     result.num_flipped_faces += p.rounding.num_flipped_faces;
     for (Mesh& m : p.pieces)
@@ -649,6 +753,14 @@ CarveResult carve_blocks(const Mesh& solid, const std::vector<HeightBox>& ordere
     if (result.num_split_regions > 0)
       progress->warn(std::to_string(result.num_split_regions) +
                      " box regions were not manifold and were cut into disjoint boxes");
+    if (result.num_pinched_regions > 0)
+      progress->info(std::to_string(result.num_pinched_regions) +
+                     " box regions touched by the surface from inside were cut through the contact (" +
+                     std::to_string(result.num_pinch_cuts) + " planes)");
+    if (result.num_unresolved_pinches > 0)
+      progress->warn(std::to_string(result.num_unresolved_pinches) +
+                     " points where the surface touches a box region from inside could not be cut apart: the "
+                     "blocks there touch themselves");
     if (result.num_degenerate_faces + result.num_flipped_faces > 0)
       progress->warn("rounding the exact blocks to doubles made " + std::to_string(result.num_degenerate_faces) +
                      " faces degenerate and flipped " + std::to_string(result.num_flipped_faces));

@@ -8,6 +8,7 @@
 
 #include "decompose/block_test_shapes.h"
 #include "subfab/core/parallel.h"
+#include "subfab/decompose/finalize_blocks.h"
 
 namespace subfab {
 namespace {
@@ -168,6 +169,40 @@ TEST(CarveBlocks, EarlierBoxLeavesPiecesTouchingAlongAnEdge) {
     EXPECT_NEAR(signed_volume(r.blocks[i].mesh), 0.75, 1e-12);
   }
   EXPECT_NEAR(total_volume(r), 3.5, 1e-12);
+}
+
+//! A 4 x 4 column from z = -1 to 1 whose top is a square dimple: an inverted
+//! pyramid with its apex at (2, 2, 0) (volume 32 - 16 / 3).
+Mesh dimpled_column() {
+  Mesh m;
+  m.vertices = {{0, 0, -1}, {4, 0, -1}, {4, 4, -1}, {0, 4, -1}, {0, 0, 1}, {4, 0, 1}, {4, 4, 1}, {0, 4, 1}, {2, 2, 0}};
+  m.faces = {{0, 2, 1}, {0, 3, 2}, {0, 1, 5}, {0, 5, 4}, {1, 2, 6}, {1, 6, 5}, {2, 3, 7},
+             {2, 7, 6}, {3, 0, 4}, {3, 4, 7}, {4, 5, 8}, {5, 6, 8}, {6, 7, 8}, {7, 4, 8}};
+  return m;
+}
+
+TEST(CarveBlocks, SurfaceTouchingTheBoxFromInsideIsCutThroughTheContact) {
+  // Regression (elephant, box 201 of 213 at default settings): the box's
+  // bottom plane z = 0 holds the dimple's apex, a vertex of the top surface.
+  // solid ∩ box is then one connected solid whose thickness drops to zero at
+  // the apex (not a 2-manifold there); it used to come out as ONE block with
+  // two vertices at the apex, touching itself, which finalize_blocks then
+  // refused ("it self-intersects"). The region is now cut by a plane through
+  // the apex, into two valid blocks.
+  const Mesh solid = dimpled_column();
+  ASSERT_NEAR(signed_volume(solid), 32.0 - 16.0 / 3.0, 1e-12);
+  const CarveResult r = carve_blocks(solid, {make_height_box({0.5, 0.5, 0}, {3.5, 3.5, 2}, Axis::PosZ)});
+  ASSERT_EQ(r.blocks.size(), 2u);
+  EXPECT_EQ(r.num_pinched_regions, 1u);
+  EXPECT_EQ(r.num_unresolved_pinches, 0u);
+  EXPECT_NEAR(total_volume(r), 4.5, 1e-12);
+  for (const Block& b : r.blocks) {
+    EXPECT_TRUE(is_closed_oriented(b.mesh));
+    EXPECT_NEAR(signed_volume(b.mesh), 2.25, 1e-12);
+    EXPECT_EQ(block_defect(b.mesh, Vec3::UnitZ(), 6.0), "");
+  }
+  // One block on each side of the plane x = 2 through the apex.
+  EXPECT_EQ(bounding_box(r.blocks[0].mesh).max.x() + bounding_box(r.blocks[1].mesh).max.x(), 5.5);
 }
 
 TEST(CarveBlocks, SameResultWhateverTheThreadCount) {

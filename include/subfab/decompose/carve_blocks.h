@@ -15,6 +15,9 @@
 //!     for every earlier box j whose interior meets B_i: P = P \ B_j
 //!       (if a difference would be non-manifold, B_i \ ∪ B_j is cut into
 //!        disjoint boxes instead and each is clipped separately)
+//!     while a piece of P touches itself (the surface touches a face of the
+//!       region from inside: zero thickness), cut the region by an
+//!       axis-aligned plane through each contact and carve each part again
 //!     split P into connected pieces, keep those touching the input surface
 //!   round every kept piece to doubles, in box order.
 #pragma once
@@ -46,6 +49,11 @@ struct CarveResult {
   std::vector<Block> blocks;             // ordered by source box, then by piece
   std::size_t num_dropped_pieces = 0;    // pieces touching no input surface (interior)
   std::size_t num_split_regions = 0;     // boxes whose region had to be cut into disjoint boxes
+  std::size_t num_pinched_regions = 0;   // boxes whose region the surface touches from inside (zero
+                                         // thickness at a point or edge), cut through the contact
+  std::size_t num_pinch_cuts = 0;        // planes cut through such contacts, summed over boxes
+  std::size_t num_unresolved_pinches = 0;  // contacts no axis-aligned cut through them separated
+                                           // (the block there touches itself; finalize rejects it)
   std::size_t num_degenerate_faces = 0;  // faces that became zero-area when rounded to doubles
   std::size_t num_flipped_faces = 0;     // faces whose normal flipped when rounded to doubles
 };
