@@ -5,6 +5,7 @@
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
 
 #include <algorithm>
+#include <limits>
 #include <map>
 #include <optional>
 #include <string>
@@ -13,6 +14,7 @@
 #include "decompose/deterministic_arena.h"
 #include "decompose/exact_mesh.h"
 #include "subfab/core/parallel.h"
+#include "subfab/decompose/finalize_blocks.h"
 #include "subfab/decompose/validate_decomposition.h"
 
 namespace subfab {
@@ -58,10 +60,68 @@ bool within_limits(const Mesh& m, Axis axis, const MergeOptions& o) {
   return (a <= o.machine_size.x() && b <= o.machine_size.y()) || (a <= o.machine_size.y() && b <= o.machine_size.x());
 }
 
-//! The union of two blocks if it is a valid block, computed in a private arena.
-std::optional<Mesh> try_union(const Block& a, const Block& b, const MergeOptions& o) {
-  std::optional<Mesh> out;
+//! Cheap necessary condition for the union of `self` and `other` to be a
+//! height field along `axis`: every face of `self` that clearly faces away
+//! from the axis lies on the union's base level or inside `other`'s bounding
+//! box (where it may be glued to `other` and vanish from the union). Only
+//! rejects, the exact test decides.
+bool may_be_height_field(const Mesh& self, const BoundingBox& other, Axis axis, double base, double tol) {
+  const Vec3 d = axis_direction(axis);
+  for (const Triangle& t : self.faces) {
+    const Vec3& a = self.vertices[static_cast<std::size_t>(t[0])];
+    const Vec3& b = self.vertices[static_cast<std::size_t>(t[1])];
+    const Vec3& c = self.vertices[static_cast<std::size_t>(t[2])];
+    const Vec3 n = (b - a).cross(c - a);
+    if (!(n.dot(d) < -1e-6 * n.norm())) continue;
+    if (std::max({a.dot(d), b.dot(d), c.dot(d)}) <= base + tol) continue;
+    bool inside = true;
+    for (const Vec3* p : {&a, &b, &c})
+      inside = inside && (p->array() >= other.min.array() - tol).all() && (p->array() <= other.max.array() + tol).all();
+    if (!inside) return false;
+  }
+  return true;
+}
+
+//! The milling directions worth an exact test for the union of a and b, in
+//! order: the larger block's, the other's, then (with `any_direction`) the
+//! remaining ones; only those that pass may_be_height_field for both blocks.
+std::vector<Axis> union_axes(const Block& a, const Block& b, const BoundingBox& ba, const BoundingBox& bb,
+                             double volume_a, double volume_b, bool any_direction) {
+  std::vector<Axis> axes{a.axis};
+  if (b.axis != a.axis) axes.insert(volume_b > volume_a ? axes.begin() : axes.end(), b.axis);
+  if (any_direction)
+    for (Axis x : kAllAxes)
+      if (std::find(axes.begin(), axes.end(), x) == axes.end()) axes.push_back(x);
+  const double tol = 1e-12 * std::max({1.0, ba.diagonal(), bb.diagonal()});
+  std::vector<Axis> out;
+  for (Axis axis : axes) {
+    const Vec3 d = axis_direction(axis);
+    double base = std::numeric_limits<double>::infinity();
+    for (const Mesh* m : {&a.mesh, &b.mesh})
+      for (const Vec3& v : m->vertices) base = std::min(base, v.dot(d));
+    if (may_be_height_field(a.mesh, bb, axis, base, tol) && may_be_height_field(b.mesh, ba, axis, base, tol))
+      out.push_back(axis);
+  }
+  return out;
+}
+
+//! A valid merged block: the union and its milling direction.
+struct Union {
+  Mesh mesh;
+  Axis axis = Axis::PosZ;
+};
+
+//! The union of two blocks if it is a valid block along one of `axes` (the
+//! first that is), computed in a private arena. When rounding the exact
+//! union to doubles makes faces degenerate or flipped (thin triangles where
+//! the corefinement cut the glued faces), the rounded union gets the
+//! cleanup every block gets at export (clean_rounded_block, same relative
+//! tolerance) and is kept only if it then passes export's block check.
+std::optional<Union> try_union(const Block& a, const Block& b, const std::vector<Axis>& axes, const MergeOptions& o) {
+  if (axes.empty()) return std::nullopt;
   if (detail::count_degenerate_faces(a.mesh) > 0 || detail::count_degenerate_faces(b.mesh) > 0) return std::nullopt;
+  std::optional<Union> out;
+  bool needs_cleanup = false;
   detail::warm_up_exact_booleans();
   {
     detail::DeterministicArena arena;
@@ -70,11 +130,12 @@ std::optional<Mesh> try_union(const Block& a, const Block& b, const MergeOptions
       const auto np = CGAL::parameters::throw_on_self_intersection(true);
       if (PMP::corefine_and_compute_union(ea, eb, u, np, np) && u.number_of_faces() > 0) {
         auto fcc = u.add_property_map<ExactMesh::Face_index, std::size_t>("f:cc", 0).first;
-        if (PMP::connected_components(u, fcc) == 1 && exact_height_field(u, a.axis)) {
+        const auto axis = std::find_if(axes.begin(), axes.end(), [&](Axis x) { return exact_height_field(u, x); });
+        if (axis != axes.end() && PMP::connected_components(u, fcc) == 1) {
           detail::SuspendArena heap;
           detail::RoundingReport rounding;
-          Mesh m = detail::to_double(u, &rounding);
-          if (rounding.num_degenerate_faces == 0 && rounding.num_flipped_faces == 0) out = std::move(m);
+          out = Union{detail::to_double(u, &rounding), *axis};
+          needs_cleanup = rounding.num_degenerate_faces + rounding.num_flipped_faces > 0;
         }
       }
     } catch (const std::exception&) {
@@ -82,9 +143,22 @@ std::optional<Mesh> try_union(const Block& a, const Block& b, const MergeOptions
     }
   }
   if (!out) return std::nullopt;
+  const Vec3 direction = axis_direction(out->axis);
+  if (needs_cleanup) {
+    const BoundingBox box = bounding_box(out->mesh);
+    double scale = box.diagonal();
+    for (const Vec3& v : out->mesh.vertices) scale = std::max(scale, v.cwiseAbs().maxCoeff());
+    const FinalizeOptions fo;
+    try {
+      clean_rounded_block(out->mesh, direction, fo.relative_tolerance * scale, fo);
+    } catch (const std::exception&) {
+      return std::nullopt;
+    }
+    if (!block_defect(out->mesh, direction, box.diagonal(), fo).empty()) return std::nullopt;
+  }
   // Check the rounded union like the validator will.
-  if (!check_closed_solid(*out).ok() || !is_height_field(*out, axis_direction(a.axis)) ||
-      !within_limits(*out, a.axis, o))
+  if (!check_closed_solid(out->mesh).ok() || !is_height_field(out->mesh, direction) ||
+      !within_limits(out->mesh, out->axis, o))
     return std::nullopt;
   return out;
 }
@@ -100,19 +174,28 @@ MergeResult merge_blocks(std::vector<Block> blocks, const MergeOptions& options)
   std::map<std::pair<std::size_t, std::size_t>, bool> rejected;
   for (int round = 0; round < options.max_rounds; ++round) {
     std::vector<BoundingBox> boxes(blocks.size());
-    for (std::size_t i = 0; i < blocks.size(); ++i) boxes[i] = bounding_box(blocks[i].mesh);
+    std::vector<double> volumes(blocks.size());
+    for (std::size_t i = 0; i < blocks.size(); ++i) {
+      boxes[i] = bounding_box(blocks[i].mesh);
+      volumes[i] = signed_volume(blocks[i].mesh);
+    }
     std::vector<std::pair<std::size_t, std::size_t>> pairs;
     for (std::size_t i = 0; i < blocks.size(); ++i)
       for (std::size_t j = i + 1; j < blocks.size(); ++j)
-        if (blocks[i].axis == blocks[j].axis && boxes_touch(boxes[i], boxes[j]) &&
+        if ((options.any_direction || blocks[i].axis == blocks[j].axis) && boxes_touch(boxes[i], boxes[j]) &&
             !rejected.count({ids[i], ids[j]}))
           pairs.emplace_back(i, j);
     if (pairs.empty()) break;
-    result.num_candidates += pairs.size();
-    std::vector<std::optional<Mesh>> unions(pairs.size());
+    std::vector<std::optional<Union>> unions(pairs.size());
+    std::vector<char> tried(pairs.size(), 0);
     parallel_for(0, pairs.size(), [&](std::size_t p) {
-      unions[p] = try_union(blocks[pairs[p].first], blocks[pairs[p].second], options);
+      const auto [i, j] = pairs[p];
+      const std::vector<Axis> axes =
+          union_axes(blocks[i], blocks[j], boxes[i], boxes[j], volumes[i], volumes[j], options.any_direction);
+      tried[p] = axes.empty() ? 0 : 1;
+      unions[p] = try_union(blocks[i], blocks[j], axes, options);
     });
+    for (char t : tried) result.num_candidates += static_cast<std::size_t>(t);
     std::vector<char> used(blocks.size(), 0);
     std::vector<char> removed(blocks.size(), 0);
     std::size_t merged_now = 0;
@@ -124,7 +207,8 @@ MergeResult merge_blocks(std::vector<Block> blocks, const MergeOptions& options)
       }
       if (used[i] || used[j]) continue;  // evaluated again next round
       used[i] = used[j] = 1;
-      blocks[i].mesh = std::move(*unions[p]);
+      blocks[i].mesh = std::move(unions[p]->mesh);
+      blocks[i].axis = unions[p]->axis;
       ids[i] = next_id++;
       removed[j] = 1;
       ++merged_now;
@@ -142,8 +226,8 @@ MergeResult merge_blocks(std::vector<Block> blocks, const MergeOptions& options)
     ids = std::move(kept_ids);
   }
   if (options.progress)
-    options.progress->info(std::to_string(result.num_merges) + " merges of adjacent same-direction blocks (" +
-                           std::to_string(result.num_candidates) + " pairs tried)");
+    options.progress->info(std::to_string(result.num_merges) + " merges of adjacent blocks (" +
+                           std::to_string(result.num_candidates) + " pairs tried exactly)");
   result.blocks = std::move(blocks);
   return result;
 }

@@ -24,11 +24,43 @@ TEST(MergeBlocks, SideBySideOnOneBaseMerge) {
   EXPECT_EQ(r.blocks[0].source_box, 0);
 }
 
-TEST(MergeBlocks, DifferentDirectionsDoNotMerge) {
+TEST(MergeBlocks, DifferentDirectionsMergeWhenTheUnionIsAHeightFieldAlongOne) {
+  // Side by side: the union is a height field along +z (and +x); the larger
+  // block's direction is kept.
   const MergeResult r = merge_blocks({make_block(box_solid({0, 0, 0}, {1, 1, 1}), Axis::PosZ, 0),
-                                      make_block(box_solid({1, 0, 0}, {2, 1, 1}), Axis::PosX, 1)});
-  EXPECT_EQ(r.blocks.size(), 2u);
-  EXPECT_EQ(r.num_merges, 0u);
+                                      make_block(box_solid({1, 0, 0}, {3, 1, 1}), Axis::PosX, 1)});
+  ASSERT_EQ(r.blocks.size(), 1u);
+  EXPECT_EQ(r.num_merges, 1u);
+  EXPECT_EQ(r.blocks[0].axis, Axis::PosX);
+  EXPECT_NEAR(signed_volume(r.blocks[0].mesh), 3.0, 1e-12);
+  EXPECT_TRUE(is_height_field(r.blocks[0].mesh, Vec3::UnitX()));
+  MergeOptions same_only;
+  same_only.any_direction = false;
+  EXPECT_EQ(merge_blocks({make_block(box_solid({0, 0, 0}, {1, 1, 1}), Axis::PosZ, 0),
+                          make_block(box_solid({1, 0, 0}, {3, 1, 1}), Axis::PosX, 1)},
+                         same_only)
+                .blocks.size(),
+            2u);
+}
+
+TEST(MergeBlocks, AThinSliverIsAbsorbedAlongItsNeighboursDirection) {
+  // A +y sliver lying on the top of a +z slab: the union is a height field
+  // along +z, the larger block's direction, which the sliver takes.
+  const Mesh slab = box_solid({0, 0, 0}, {2, 1, 1});
+  const Mesh sliver = box_solid({0, 0, 1}, {2, 1, 1.001});
+  const MergeResult r = merge_blocks({make_block(slab, Axis::PosZ, 0), make_block(sliver, Axis::PosY, 1)});
+  ASSERT_EQ(r.blocks.size(), 1u);
+  EXPECT_EQ(r.blocks[0].axis, Axis::PosZ);
+  EXPECT_NEAR(signed_volume(r.blocks[0].mesh), 2.002, 1e-12);
+  // A -x sliver under the left half of the slab: along +z the slab's bottom
+  // would have two levels, along -x the sliver's right end would face +x
+  // off the base; +x is the next direction tried, and along it both left
+  // ends lie on x = 0: the union takes +x.
+  const Mesh below = box_solid({0, 0, -0.001}, {1, 1, 0});
+  const MergeResult r2 = merge_blocks({make_block(slab, Axis::PosZ, 0), make_block(below, Axis::NegX, 1)});
+  ASSERT_EQ(r2.blocks.size(), 1u);
+  EXPECT_EQ(r2.blocks[0].axis, Axis::PosX);
+  EXPECT_TRUE(is_height_field(r2.blocks[0].mesh, Vec3::UnitX()));
 }
 
 TEST(MergeBlocks, StackedBlockMergesOnlyWhereTheUnionIsAHeightField) {
@@ -40,9 +72,18 @@ TEST(MergeBlocks, StackedBlockMergesOnlyWhereTheUnionIsAHeightField) {
   ASSERT_EQ(up.blocks.size(), 1u);
   EXPECT_NEAR(signed_volume(up.blocks[0].mesh), 3.0, 1e-12);
   EXPECT_TRUE(is_height_field(up.blocks[0].mesh, Vec3::UnitZ()));
-  // Milled from -z: the union would face +z at two levels: not merged.
+  // Milled from -z: the union would face +z at two levels: not a -z block.
+  // It is one along +x (both left ends on x = 0, the first direction tried
+  // that works), which it takes unless only the blocks' own direction is
+  // allowed.
   MergeResult down = merge_blocks({make_block(slab, Axis::NegZ, 0), make_block(cube, Axis::NegZ, 1)});
-  EXPECT_EQ(down.blocks.size(), 2u);
+  ASSERT_EQ(down.blocks.size(), 1u);
+  EXPECT_EQ(down.blocks[0].axis, Axis::PosX);
+  EXPECT_TRUE(is_height_field(down.blocks[0].mesh, Vec3::UnitX()));
+  MergeOptions same_only;
+  same_only.any_direction = false;
+  EXPECT_EQ(merge_blocks({make_block(slab, Axis::NegZ, 0), make_block(cube, Axis::NegZ, 1)}, same_only).blocks.size(),
+            2u);
   // Height limit 1.5: the union (height 2) is too tall.
   MergeOptions limited;
   limited.max_height = 1.5;

@@ -32,7 +32,7 @@ struct DecomposeOptions {
   bool orient = true;           // false: --no-orient, keep the input frame
   double grid_factor = 1.0;     // --grid-factor: grid spacing = average edge length x this (> 0)
   double cover_time_limit_s = 60.0;  // CBC time limit, seconds
-  bool merge = true;            // merge adjacent same-direction blocks (4.3.4)
+  bool merge = true;            // merge touching blocks whose union is a valid block along some direction (4.3.4)
   bool repair = true;           // false: --exact, refuse (AlgorithmError) when the chosen frame has infeasible
                                 // features instead of repairing them (repair_infeasible_features, 4.3.5)
   double max_deviation = 0.005; // --max-deviation: cap on the repair's Hausdorff distance, x bbox diagonal (> 0)
