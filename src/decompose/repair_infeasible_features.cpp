@@ -2,7 +2,10 @@
 #include "subfab/decompose/repair_infeasible_features.h"
 
 #include <algorithm>
+#include <array>
+#include <utility>
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -117,6 +120,310 @@ double max_displacement(const Mesh& mesh, const Mesh& reference) {
   return d;
 }
 
+// ---------------------------------------------------------------------------
+// Local edits, each accepted only when the exact test finds strictly fewer
+// infeasible features afterwards (so the repair moves towards feasibility and
+// terminates): splits along the coordinate planes through a vertex (no
+// deviation), single-vertex moves, small-ring smoothing; then refinement of
+// the stars that no edit fixed.
+
+//! The mesh being repaired and `reference`: the same faces, each vertex at its
+//! point of the input surface (every reference face lies in one input face),
+//! so max |vertex - reference| bounds the Hausdorff distance to the input.
+struct Work {
+  Mesh mesh;
+  Mesh reference;
+};
+
+//! Faces around each vertex, in increasing face id.
+std::vector<std::vector<int>> vertex_stars(const Mesh& mesh) {
+  std::vector<std::vector<int>> star(mesh.vertices.size());
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+    for (int v : mesh.faces[f]) star[static_cast<std::size_t>(v)].push_back(static_cast<int>(f));
+  return star;
+}
+
+//! Splits the edge (a, b) at `x` (reference point `xr`): each of its two faces
+//! (u, v, o) becomes (u, m, o) (same id) and (m, v, o) (appended).
+void split_edge(Work& w, const std::vector<int>& star_a, int a, int b, const Vec3& x, const Vec3& xr) {
+  const int m = static_cast<int>(w.mesh.vertices.size());
+  w.mesh.vertices.push_back(x);
+  w.reference.vertices.push_back(xr);
+  for (int f : star_a) {
+    Triangle& t = w.mesh.faces[static_cast<std::size_t>(f)];
+    for (int c = 0; c < 3; ++c) {
+      const int u = t[c], v = t[(c + 1) % 3], o = t[(c + 2) % 3];
+      if (!((u == a && v == b) || (u == b && v == a))) continue;
+      t = {u, m, o};
+      w.mesh.faces.push_back({m, v, o});
+      break;
+    }
+  }
+  w.reference.faces = w.mesh.faces;
+}
+
+//! Splits the faces around p along the three coordinate planes through p
+//! (each corner at p then lies in one closed orthant); the cut points get
+//! the plane's coordinate exactly. Returns false when nothing was split.
+bool split_along_planes(Work& w, int p) {
+  bool any = false;
+  const Vec3 pp = w.mesh.vertices[static_cast<std::size_t>(p)];
+  for (int k = 0; k < 3; ++k)
+    for (bool again = true; again;) {
+      again = false;
+      const std::vector<std::vector<int>> star = vertex_stars(w.mesh);
+      for (int f : star[static_cast<std::size_t>(p)]) {
+        const Triangle t = w.mesh.faces[static_cast<std::size_t>(f)];
+        const int c = t[0] == p ? 0 : (t[1] == p ? 1 : 2);
+        const int q = t[(c + 1) % 3], r = t[(c + 2) % 3];
+        const Vec3& qq = w.mesh.vertices[static_cast<std::size_t>(q)];
+        const Vec3& rr = w.mesh.vertices[static_cast<std::size_t>(r)];
+        if (!((qq[k] < pp[k] && rr[k] > pp[k]) || (qq[k] > pp[k] && rr[k] < pp[k]))) continue;
+        const double s = (pp[k] - qq[k]) / (rr[k] - qq[k]);
+        Vec3 x = qq + s * (rr - qq);
+        x[k] = pp[k];
+        const Vec3& qr = w.reference.vertices[static_cast<std::size_t>(q)];
+        const Vec3& rr_ref = w.reference.vertices[static_cast<std::size_t>(r)];
+        split_edge(w, star[static_cast<std::size_t>(q)], q, r, x, qr + s * (rr_ref - qr));
+        any = again = true;
+        break;
+      }
+    }
+  return any;
+}
+
+//! Moves the vertices `ids` to `positions` unless a face around them would
+//! flip or degenerate or a vertex would leave the deviation cap; returns
+//! whether it moved them.
+bool move_vertices(Work& w, const std::vector<std::vector<int>>& star, const std::vector<int>& ids,
+                   const std::vector<Vec3>& positions, double cap) {
+  for (std::size_t i = 0; i < ids.size(); ++i)
+    if (!((positions[i] - w.reference.vertices[static_cast<std::size_t>(ids[i])]).norm() <= cap)) return false;
+  std::vector<int> faces;
+  for (int v : ids) faces.insert(faces.end(), star[static_cast<std::size_t>(v)].begin(), star[static_cast<std::size_t>(v)].end());
+  std::sort(faces.begin(), faces.end());
+  faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+  std::vector<Vec3> before;
+  for (int f : faces) before.push_back(face_normal_scaled(w.mesh, static_cast<std::size_t>(f)));
+  std::vector<Vec3> old;
+  for (int v : ids) old.push_back(w.mesh.vertices[static_cast<std::size_t>(v)]);
+  for (std::size_t i = 0; i < ids.size(); ++i) w.mesh.vertices[static_cast<std::size_t>(ids[i])] = positions[i];
+  bool ok = true;
+  for (std::size_t i = 0; i < faces.size() && ok; ++i) {
+    const Vec3 n = face_normal_scaled(w.mesh, static_cast<std::size_t>(faces[i]));
+    ok = n.dot(before[i]) > 0.25 * n.norm() * before[i].norm();  // turns by less than ~75 degrees
+  }
+  if (!ok)
+    for (std::size_t i = 0; i < ids.size(); ++i) w.mesh.vertices[static_cast<std::size_t>(ids[i])] = old[i];
+  return ok;
+}
+
+//! Nearest positions of v (one per milling axis, where one exists) at which
+//! every face around v faces that axis with a margin: then v and the edges at
+//! v are coverable (a common axis sees the whole star; see
+//! find_infeasible_features.h). The normal of face (v, q, r) at position x is
+//! q x r + x x (q - r), linear in x, so each face gives a half-space
+//! g.x >= h; the nearest point of their intersection is the projection of v
+//! onto the span of at most three active constraints (enumerated).
+std::vector<Vec3> axis_candidates(const Mesh& mesh, const std::vector<std::vector<int>>& star, int v) {
+  const Vec3 p = mesh.vertices[static_cast<std::size_t>(v)];
+  std::vector<Vec3> out;
+  for (int axis = 0; axis < 6; ++axis)
+    for (double margin : {0.02, 0.1}) {
+      Vec3 a = Vec3::Zero();
+      a[axis / 2] = axis % 2 == 0 ? 1.0 : -1.0;
+      std::vector<Vec3> g;
+      std::vector<double> h;
+      bool possible = true;
+      for (int f : star[static_cast<std::size_t>(v)]) {
+        const Triangle& t = mesh.faces[static_cast<std::size_t>(f)];
+        const int c = t[0] == v ? 0 : (t[1] == v ? 1 : 2);
+        const Vec3& q = mesh.vertices[static_cast<std::size_t>(t[(c + 1) % 3])];
+        const Vec3& r = mesh.vertices[static_cast<std::size_t>(t[(c + 2) % 3])];
+        const Vec3 gi = (q - r).cross(a);
+        const double hi = margin * (q - p).cross(r - p).norm() - a.dot(q.cross(r));
+        if (gi.squaredNorm() == 0) {
+          possible = possible && hi <= 0;
+          continue;
+        }
+        g.push_back(gi);
+        h.push_back(hi);
+      }
+      if (!possible) continue;
+      const std::size_t m = g.size();
+      const auto feasible = [&](const Vec3& x) {
+        for (std::size_t i = 0; i < m; ++i)
+          if (g[i].dot(x) < h[i] - 1e-12 * g[i].norm() * (x.norm() + 1)) return false;
+        return true;
+      };
+      std::optional<Vec3> best;
+      const auto consider = [&](const Vec3& x) {
+        if (x.allFinite() && feasible(x) && (!best || (x - p).squaredNorm() < (*best - p).squaredNorm())) best = x;
+      };
+      consider(p);
+      for (std::size_t i = 0; i < m; ++i) {
+        consider(p + (h[i] - g[i].dot(p)) / g[i].squaredNorm() * g[i]);
+        for (std::size_t j = i + 1; j < m; ++j) {
+          Eigen::Matrix<double, 3, 2> G;
+          G << g[i], g[j];
+          const Eigen::Matrix2d A = G.transpose() * G;
+          if (std::abs(A.determinant()) <= 1e-12 * A.norm() * A.norm()) continue;
+          const Eigen::Vector2d rhs(h[i] - g[i].dot(p), h[j] - g[j].dot(p));
+          consider(p + G * A.inverse() * rhs);
+          for (std::size_t k = j + 1; k < m; ++k) {
+            Eigen::Matrix3d M;
+            M << g[i].transpose(), g[j].transpose(), g[k].transpose();
+            if (std::abs(M.determinant()) <= 1e-12 * M.norm() * M.norm() * M.norm()) continue;
+            consider(M.inverse() * Vec3(h[i], h[j], h[k]));
+          }
+        }
+      }
+      if (best && *best != p) out.push_back(*best);
+    }
+  return out;
+}
+
+//! Candidate positions for vertex v, nearest first: towards the centroid of
+//! its neighbours, onto the line through two neighbours (a straightened
+//! crease), onto the plane of a face across its link (a flattened corner).
+std::vector<Vec3> move_candidates(const Mesh& mesh, const std::vector<std::vector<int>>& star, int v) {
+  const Vec3 p = mesh.vertices[static_cast<std::size_t>(v)];
+  std::vector<int> nb;
+  std::vector<std::pair<int, int>> link;
+  for (int f : star[static_cast<std::size_t>(v)]) {
+    const Triangle& t = mesh.faces[static_cast<std::size_t>(f)];
+    const int c = t[0] == v ? 0 : (t[1] == v ? 1 : 2);
+    nb.push_back(t[(c + 1) % 3]);
+    link.emplace_back(t[(c + 1) % 3], t[(c + 2) % 3]);
+  }
+  std::sort(nb.begin(), nb.end());
+  nb.erase(std::unique(nb.begin(), nb.end()), nb.end());
+  std::vector<Vec3> out;
+  Vec3 centroid = Vec3::Zero();
+  for (int u : nb) centroid += mesh.vertices[static_cast<std::size_t>(u)];
+  centroid /= static_cast<double>(nb.size());
+  for (double s : {0.0625, 0.125, 0.25, 0.5, 0.75, 1.0}) out.push_back(p + s * (centroid - p));
+  for (std::size_t i = 0; i < nb.size(); ++i)
+    for (std::size_t j = i + 1; j < nb.size(); ++j) {
+      const Vec3& a = mesh.vertices[static_cast<std::size_t>(nb[i])];
+      const Vec3 d = mesh.vertices[static_cast<std::size_t>(nb[j])] - a;
+      const double s = (p - a).dot(d) / d.squaredNorm();
+      if (s > 0 && s < 1) out.push_back(a + s * d);
+    }
+  for (const auto& [a, b] : link)
+    for (int f : star[static_cast<std::size_t>(a)]) {  // the face across (a, b): b -> a, not at v
+      const Triangle& t = mesh.faces[static_cast<std::size_t>(f)];
+      if (std::find(t.begin(), t.end(), v) != t.end() || std::find(t.begin(), t.end(), b) == t.end()) continue;
+      const Vec3 n = face_unit_normal(mesh, static_cast<std::size_t>(f));
+      if (n.allFinite()) out.push_back(p - (p - mesh.vertices[static_cast<std::size_t>(a)]).dot(n) * n);
+    }
+  const std::vector<Vec3> axis = axis_candidates(mesh, star, v);
+  out.insert(out.end(), axis.begin(), axis.end());
+  std::stable_sort(out.begin(), out.end(),
+                   [&](const Vec3& x, const Vec3& y) { return (x - p).squaredNorm() < (y - p).squaredNorm(); });
+  return out;
+}
+
+//! Vertices within `rings` edge rings of `v` (v first, then by ring and id).
+std::vector<int> ring_vertices(const Mesh& mesh, const std::vector<std::vector<int>>& star, int v, int rings) {
+  std::vector<int> out{v};
+  std::vector<char> seen(mesh.vertices.size(), 0);
+  seen[static_cast<std::size_t>(v)] = 1;
+  std::size_t begin = 0;
+  for (int r = 0; r < rings; ++r) {
+    const std::size_t end = out.size();
+    std::vector<int> next;
+    for (std::size_t i = begin; i < end; ++i)
+      for (int f : star[static_cast<std::size_t>(out[i])])
+        for (int u : mesh.faces[static_cast<std::size_t>(f)])
+          if (!seen[static_cast<std::size_t>(u)]) {
+            seen[static_cast<std::size_t>(u)] = 1;
+            next.push_back(u);
+          }
+    std::sort(next.begin(), next.end());
+    out.insert(out.end(), next.begin(), next.end());
+    begin = end;
+  }
+  return out;
+}
+
+//! Laplacian smoothing (Jacobi, factor 1/2) of the vertices within `rings`-1
+//! rings of v, the ring `rings` fixed.
+std::vector<Vec3> smoothed_ring(const Mesh& mesh, const std::vector<std::vector<int>>& star,
+                                const std::vector<int>& movable, int steps) {
+  std::vector<Vec3> pos;
+  for (int u : movable) pos.push_back(mesh.vertices[static_cast<std::size_t>(u)]);
+  Mesh m = mesh;  // positions being smoothed
+  for (int step = 0; step < steps; ++step) {
+    std::vector<Vec3> next = pos;
+    for (std::size_t i = 0; i < movable.size(); ++i) {
+      const int v = movable[i];
+      Vec3 sum = Vec3::Zero();
+      int n = 0;
+      for (int f : star[static_cast<std::size_t>(v)]) {
+        const Triangle& t = m.faces[static_cast<std::size_t>(f)];
+        const int c = t[0] == v ? 0 : (t[1] == v ? 1 : 2);
+        sum += m.vertices[static_cast<std::size_t>(t[(c + 1) % 3])];
+        ++n;
+      }
+      next[i] = pos[i] + 0.5 * (sum / n - pos[i]);
+    }
+    pos = std::move(next);
+    for (std::size_t i = 0; i < movable.size(); ++i) m.vertices[static_cast<std::size_t>(movable[i])] = pos[i];
+  }
+  return pos;
+}
+
+bool same_feature(const InfeasibleFeature& a, const InfeasibleFeature& b) {
+  return a.kind == b.kind && a.vertex0 == b.vertex0 && a.vertex1 == b.vertex1;
+}
+
+//! Tries the local edits for one feature, cheapest first; keeps the first one
+//! after which the exact test finds fewer features (then `features` is that
+//! test's result) and returns whether there was one.
+bool fix_feature(Work& w, const InfeasibleFeature& feature, FeasibilityResult& features, double cap) {
+  const std::size_t before = features.size();
+  const auto accept = [&](Work& candidate) {
+    FeasibilityResult r = find_infeasible_features(candidate.mesh);
+    if (r.size() >= before) return false;
+    features = std::move(r);
+    w = std::move(candidate);
+    return true;
+  };
+  // 1. Split the corners at the vertex along the coordinate planes (no deviation).
+  if (feature.kind == InfeasibleFeature::Kind::Vertex && feature.splittable) {
+    Work c = w;
+    if (split_along_planes(c, feature.vertex0) && accept(c)) return true;
+  }
+  const std::vector<std::vector<int>> star = vertex_stars(w.mesh);
+  std::vector<int> centres{feature.vertex0};
+  if (feature.vertex1 >= 0) centres.push_back(feature.vertex1);
+  // 2. Move one vertex: a feature vertex, then a neighbour.
+  std::vector<int> movers = centres;
+  for (int v : centres) {
+    const std::vector<int> ring = ring_vertices(w.mesh, star, v, 1);
+    for (int u : ring)
+      if (std::find(movers.begin(), movers.end(), u) == movers.end()) movers.push_back(u);
+  }
+  for (int v : movers)
+    for (const Vec3& x : move_candidates(w.mesh, star, v)) {
+      Work c = w;
+      if (move_vertices(c, star, {v}, {x}, cap) && accept(c)) return true;
+    }
+  // 3. Smooth a small disc around the feature, its border fixed.
+  for (int rings = 1; rings <= 3; ++rings)
+    for (int steps : {2, 8}) {
+      std::vector<int> movable;
+      for (int v : centres)
+        for (int u : ring_vertices(w.mesh, star, v, rings - 1))
+          if (std::find(movable.begin(), movable.end(), u) == movable.end()) movable.push_back(u);
+      const std::vector<Vec3> positions = smoothed_ring(w.mesh, star, movable, steps * rings);
+      Work c = w;
+      if (move_vertices(c, star, movable, positions, cap) && accept(c)) return true;
+    }
+  return false;
+}
+
 }  // namespace
 
 RepairResult repair_infeasible_features(const Mesh& input, const RepairOptions& options) {
@@ -144,6 +451,66 @@ RepairResult repair_infeasible_features(const Mesh& input, const RepairOptions& 
   const double cap = options.max_deviation * diagonal;
   Mesh mesh = input;       // being repaired
   Mesh reference = input;  // same connectivity, each vertex at its point of the input surface
+
+  // A. Local edits that each strictly reduce the number of features, with
+  // refinement of the stars no edit fixes.
+  {
+    Work w{input, input};
+    int level = 0;
+    // Moves are first limited to a small part of the cap, so that cheap
+    // fixes do not use up the deviation that harder features need.
+    const std::array<double, 3> budgets{cap / 16, cap / 4, cap};
+    std::size_t budget = 0;
+    while (!features.feasible() && report.num_rounds < options.max_rounds) {
+      bool fixed_any = false;
+      const std::vector<InfeasibleFeature> snapshot = features.features;
+      for (const InfeasibleFeature& f : snapshot) {
+        if (std::none_of(features.features.begin(), features.features.end(),
+                         [&](const InfeasibleFeature& g) { return same_feature(f, g); }))
+          continue;
+        fixed_any = fix_feature(w, f, features, budgets[budget]) || fixed_any;
+        if (features.feasible()) break;
+      }
+      ++report.num_rounds;
+      if (progress) {
+        std::ostringstream msg;
+        msg << "repair round " << report.num_rounds << " (local edits): " << w.mesh.faces.size() << " faces, deviation <= "
+            << max_displacement(w.mesh, w.reference) << ", " << summary(w.mesh, features) << " left";
+        progress->info(msg.str());
+      }
+      if (fixed_any || features.feasible()) continue;
+      if (budget + 1 < budgets.size()) {
+        ++budget;
+        continue;
+      }
+      budget = 0;
+      // No edit helped: refine the faces around the remaining features.
+      const std::vector<std::vector<int>> star = vertex_stars(w.mesh);
+      std::vector<int> split;
+      for (int v : feature_vertices(features))
+        for (int u : ring_vertices(w.mesh, star, v, 1))
+          for (int f : star[static_cast<std::size_t>(u)])
+            if (longest_edge(w.mesh, w.mesh.faces[static_cast<std::size_t>(f)]) > target_edge) split.push_back(f);
+      // Bounded work: at most 6 levels, and a few hundred new faces per input
+      // feature (a long sharp crease needs the fillet of B, not vertex edits).
+      if (split.empty() || ++level > 6 ||
+          w.mesh.faces.size() > input.faces.size() + 400 * static_cast<std::size_t>(report.num_features))
+        break;
+      RefineResult refined = refine_mesh(w.mesh, split);
+      w.reference.vertices = refine_mesh(w.reference, split).mesh.vertices;
+      w.reference.faces = refined.mesh.faces;
+      w.mesh = std::move(refined.mesh);
+      features = find_infeasible_features(w.mesh);
+    }
+    if (features.feasible()) {
+      mesh = std::move(w.mesh);
+      reference = std::move(w.reference);
+    } else {  // B below starts again from the input (the edits may have used up the deviation cap)
+      features = find_infeasible_features(input);
+    }
+  }
+  // B. What the local edits could not fix (sharp creases that need a fillet
+  // of several strips): rounds of band refinement and Taubin smoothing.
 
   for (int round = 0; !features.feasible(); ++round) {
     if (round >= options.max_rounds) {

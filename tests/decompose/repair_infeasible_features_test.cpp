@@ -38,6 +38,19 @@ Mesh make_oblique_wedge(double apex_degrees = 30.0) {
   return m;
 }
 
+//! A unit cube with a thin tetrahedral spike on its top face, leaning along
+//! (1, 1, 1): the three sides of its tip (vertex 11) have normals of mixed
+//! signs, so no axis sees the tip, whatever the refinement.
+Mesh make_cube_with_diagonal_spike() {
+  const double c = (0.4 + 0.6 + 0.45) / 3, l = 0.5 / std::sqrt(3.0);
+  Mesh m;
+  m.vertices = {{0, 0, 0},      {1, 0, 0},        {1, 1, 0},        {0, 1, 0},        {0, 0, 1},         {1, 0, 1},
+                {1, 1, 1},      {0, 1, 1},        {0.4, 0.4, 1},    {0.6, 0.45, 1},   {0.45, 0.6, 1},    {c + l, c + l, 1 + l}};
+  m.faces = {{0, 2, 1}, {0, 3, 2}, {0, 1, 5}, {0, 5, 4}, {1, 2, 6}, {1, 6, 5},  {2, 3, 7},  {2, 7, 6},  {3, 0, 4},  {3, 4, 7},
+             {4, 5, 9}, {4, 9, 8}, {5, 6, 9}, {6, 10, 9}, {6, 7, 10}, {7, 8, 10}, {7, 4, 8}, {8, 9, 11}, {9, 10, 11}, {10, 8, 11}};
+  return m;
+}
+
 bool grow_succeeds(const Mesh& mesh) {
   try {
     grow_boxes(mesh, GrowOptions{});
@@ -122,6 +135,43 @@ TEST(RepairInfeasibleFeatures, SameResultWithOneThread) {
   EXPECT_EQ(all.mesh.vertices, one.mesh.vertices);
   EXPECT_EQ(all.mesh.faces, one.mesh.faces);
   EXPECT_EQ(all.report.max_deviation, one.report.max_deviation);
+}
+
+TEST(RepairInfeasibleFeatures, DiagonalSpikeTipIsRepairedLocally) {
+  const Mesh spike = make_cube_with_diagonal_spike();
+  Mesh check = spike;
+  ASSERT_NO_THROW(require_closed_solid(check));
+  const FeasibilityResult features = find_infeasible_features(spike);
+  ASSERT_EQ(features.num_vertices, 1u);
+  EXPECT_EQ(features.num_edges, 0u);
+  EXPECT_EQ(features.features.front().vertex0, 11);
+  EXPECT_FALSE(features.features.front().splittable);
+  const RepairOptions o{};
+  const RepairResult r = repair_infeasible_features(spike, o);
+  expect_repaired(spike, r, o);
+  EXPECT_EQ(r.report.num_vertices, 1);
+  // Only the spike changed: the cube's corners are where they were.
+  for (int v = 0; v < 8; ++v) EXPECT_EQ(r.mesh.vertices[static_cast<std::size_t>(v)], spike.vertices[static_cast<std::size_t>(v)]);
+  RepairResult one;
+  {
+    ThreadLimit limit(1);
+    one = repair_infeasible_features(spike, o);
+  }
+  EXPECT_EQ(one.mesh.vertices, r.mesh.vertices);
+  EXPECT_EQ(one.mesh.faces, r.mesh.faces);
+}
+
+TEST(RepairInfeasibleFeatures, AnchorFlukeTipsAreStraightened) {
+  // The two corner vertices of anchor.off (infeasible in every frame) sit
+  // 0.0015 off the crease their neighbours span; straightening it is enough.
+  const Mesh anchor = read_mesh(test::data_path("anchor.off"));
+  const FeasibilityResult features = find_infeasible_features(anchor);
+  ASSERT_EQ(features.num_vertices, 2u);
+  const RepairOptions o{};
+  const RepairResult r = repair_infeasible_features(anchor, o);
+  expect_repaired(anchor, r, o);
+  EXPECT_LE(r.report.max_deviation_fraction(), 0.002);
+  EXPECT_LE(r.report.num_faces_new, 40);
 }
 
 TEST(RepairInfeasibleFeatures, CapsAreEnforced) {

@@ -15,7 +15,25 @@
 //!
 //! Outline of repair_infeasible_features():
 //!   1. features = exact local test; none: return the input unchanged;
-//!   2. repeat (at most `max_rounds` times) while features remain:
+//!   A. local edits, each kept only if the exact test then finds strictly
+//!      fewer features (so this stage moves towards feasibility and ends),
+//!      tried per feature, cheapest first:
+//!      - a "splittable" vertex: split its faces along the coordinate planes
+//!        through it (no deviation);
+//!      - move one vertex (the feature's, then a neighbour): towards the
+//!        centroid of its neighbours, onto the line of two neighbours (a
+//!        straightened crease), onto the plane of a face across its link,
+//!        or to the nearest position where its whole star faces one axis
+//!        (exact half-spaces: the normal is linear in the vertex), so the
+//!        axis sees the vertex and its edges;
+//!      - Laplacian smoothing of a disc of 1 to 3 rings around the feature;
+//!      moves are limited to 1/16, then 1/4, then all of the deviation cap;
+//!      when no edit helps, the stars of the remaining features are refined
+//!      one-to-four (at most 6 levels, a few hundred faces per feature) and
+//!      the edits are tried again;
+//!   B. if features remain, start again from the input with rounds of band
+//!      refinement and smoothing (sharp creases that need a fillet of many
+//!      strips); repeat (at most `max_rounds` times) while features remain:
 //!      a. band = faces within `band_rings` edge rings of the feature
 //!         vertices (one ring more every `widen_every` rounds);
 //!      b. refine the band one-to-four (conforming, refine_mesh) until the
@@ -46,7 +64,7 @@ namespace subfab {
 
 //! Options of repair_infeasible_features().
 struct RepairOptions {
-  int max_rounds = 40;          // find/refine/smooth rounds before giving up
+  int max_rounds = 40;          // rounds of local edits (A), then of refine/smooth (B), before giving up
   double max_deviation = 0.005; // cap on the deviation from the input, fraction of the bbox diagonal (> 0)
   double edge_length = 0.004;   // band faces are refined until their longest edge is below this, fraction of
                                 // the bbox diagonal (> 0); sets the fillet size (a few such lengths)
