@@ -93,9 +93,17 @@ double blocks_overlap(const Mesh& a, const Mesh& b) {
   require_boolean_input(b, "a block");
   // a ∩ b lies in the common box of their bounding boxes: clip both to it
   // first (exactly), so the boolean only sees the faces near the contact.
+  // The box is widened by a margin so that no clip plane is a bounding plane
+  // of the other block: each plane then cuts at most one of the two, and no
+  // cut face is coplanar with a face of the other one. (CGAL 5.5's
+  // corefinement crashed, segfault, on two valid clipped pieces whose cut
+  // faces shared a plane: fertility blocks 82 and 114.)
   BoundingBox common;
   common.min = ba.min.cwiseMax(bb.min);
   common.max = ba.max.cwiseMin(bb.max);
+  const double margin = 1e-3 * (common.max - common.min).norm();
+  common.min.array() -= margin;
+  common.max.array() += margin;
   {
     ExactMesh ea = detail::to_exact(a), eb = detail::to_exact(b);
     bool clipped = false;

@@ -8,6 +8,8 @@
 
 
 #include "decompose/block_test_shapes.h"
+#include "subfab/mesh/read_mesh.h"
+#include "test_support.h"
 
 namespace subfab {
 namespace {
@@ -205,6 +207,19 @@ TEST(ValidateDecomposition, OutsideVolumesOnATessellatedCube) {
     EXPECT_NEAR(v, c.outside, 1e-12) << c.min.transpose() << " .. " << c.max.transpose();
   }
   EXPECT_NEAR(volume_outside(box_solid({-1, -1, -1}, {5, 5, 3.5}), cube), 6 * 6 * 4.5 - 4 * 4 * 3.5, 1e-9);
+}
+
+// Regression: two valid fertility blocks (data/regression/README.md) whose
+// pieces clipped to the common box of their bounding boxes made CGAL's
+// corefinement crash; the widened clip box avoids the shared cut planes.
+TEST(ValidateDecomposition, OverlapOfFertilityBlocksDoesNotCrash) {
+  const Mesh a = read_mesh(test::data_path("regression/fertility_block_082.obj"));
+  const Mesh b = read_mesh(test::data_path("regression/fertility_block_114.obj"));
+  ASSERT_TRUE(check_closed_solid(a).ok());
+  ASSERT_TRUE(check_closed_solid(b).ok());
+  EXPECT_LE(blocks_overlap(a, b), 1e-9 * std::min(signed_volume(a), signed_volume(b)));
+  EXPECT_LE(blocks_overlap(b, a), 1e-9 * std::min(signed_volume(a), signed_volume(b)));
+  EXPECT_NEAR(blocks_overlap(a, a), signed_volume(a), 1e-9 * signed_volume(a));
 }
 
 TEST(ValidateDecomposition, CoverageFindsTheUncoveredPart) {
