@@ -67,13 +67,20 @@ std::optional<double> exact_overlap(ExactMesh ea, ExactMesh eb) {
       }))
     return std::max(0.0, mesh_volume(out));
   // The intersection is not a 2-manifold (the blocks touch along an edge):
-  // measure it as vol(a) - vol(a \ b) instead.
+  // measure it as vol(a) - vol(a \ b) instead, or else vol(b) - vol(b \ a).
+  ExactMesh a3 = a2, b3 = b2;
   const double va = mesh_volume(a2);
   ExactMesh diff;
   if (guarded([&] {
         return PMP::corefine_and_compute_difference(a2, b2, diff, kThrowOnSelfIntersection, kThrowOnSelfIntersection);
       }))
     return std::max(0.0, va - mesh_volume(diff));
+  const double vb = mesh_volume(b3);
+  ExactMesh diff_b;
+  if (guarded([&] {
+        return PMP::corefine_and_compute_difference(b3, a3, diff_b, kThrowOnSelfIntersection, kThrowOnSelfIntersection);
+      }))
+    return std::max(0.0, vb - mesh_volume(diff_b));
   return std::nullopt;
 }
 
