@@ -98,6 +98,17 @@ def stage_times(stderr_text):
     return {m.group(1): float(m.group(2)) for m in re.finditer(r"^\[([^\]]+)\] done in ([0-9.]+) s", stderr_text, re.M)}
 
 
+def timed_run(cmd, timeout):
+    """(exit code or None on timeout, stdout, stderr with /usr/bin/time -v's report, wall seconds)."""
+    start = time.time()
+    try:
+        p = subprocess.run(["/usr/bin/time", "-v"] + cmd, capture_output=True, text=True, timeout=timeout)
+        rc, out, err = p.returncode, p.stdout, p.stderr
+    except subprocess.TimeoutExpired:
+        rc, out, err = None, "", f"timeout after {timeout} s"
+    return rc, out, err, round(time.time() - start, 2)
+
+
 def run_one(args, run):
     mesh = os.path.join(args.models, run["file"])
     outdir = os.path.join(args.out, slug(run["name"] + ("_" + "_".join(run["options"]) if run["options"] else "")))
@@ -105,13 +116,7 @@ def run_one(args, run):
         run["options"]
     res = dict(run)
     res["command"] = " ".join(cmd)
-    start = time.time()
-    try:
-        p = subprocess.run(["/usr/bin/time", "-v"] + cmd, capture_output=True, text=True, timeout=args.timeout)
-        rc, out, err = p.returncode, p.stdout, p.stderr
-    except subprocess.TimeoutExpired:
-        rc, out, err = None, "", f"timeout after {args.timeout} s"
-    res["wall_s"] = round(time.time() - start, 2)
+    rc, out, err, res["wall_s"] = timed_run(cmd, args.timeout)
     res["exit"] = rc
     res["peak_mb"] = peak_rss_mb(err)
     if rc != 0:
@@ -132,13 +137,7 @@ def run_one(args, run):
         return res
     vcmd = [args.subfab, "validate", mesh, outdir, "--json", "--threads", str(args.threads)]
     res["validate_command"] = " ".join(vcmd)
-    start = time.time()
-    try:
-        v = subprocess.run(["/usr/bin/time", "-v"] + vcmd, capture_output=True, text=True, timeout=args.timeout)
-        vrc, vout, verr = v.returncode, v.stdout, v.stderr
-    except subprocess.TimeoutExpired:
-        vrc, vout, verr = None, "", f"timeout after {args.timeout} s"
-    res["validate_wall_s"] = round(time.time() - start, 2)
+    vrc, vout, verr, res["validate_wall_s"] = timed_run(vcmd, args.timeout)
     res["validate_exit"] = vrc
     res["validate_peak_mb"] = peak_rss_mb(verr)
     res["validate_times_s"] = stage_times(verr)
