@@ -1,18 +1,21 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The CGAL parts of validate_decomposition.h: exact overlap and outside
 // volumes (corefinement on an exact kernel) and the coverage distances
-// (AABB tree on exact predicates).
+// (AABB tree on exact predicates). Where the corefinement cannot output a
+// 2-manifold (blocks touching along an edge or at a point), the volumes are
+// measured on Nef polyhedra, which represent non-manifold solids exactly.
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Nef_polyhedron_3.h>
+#include <CGAL/boost/graph/convert_nef_polyhedron_to_polygon_mesh.h>
 #include <CGAL/Polygon_mesh_processing/clip.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
 
 #include <algorithm>
 #include <cmath>
-#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -58,9 +61,38 @@ bool boxes_overlap(const BoundingBox& a, const BoundingBox& b) {
 
 namespace {
 
-//! vol(a ∩ b) of two exact closed meshes (consumed), or nullopt when neither
-//! the intersection nor the difference is a 2-manifold.
-std::optional<double> exact_overlap(ExactMesh ea, ExactMesh eb) {
+using Nef = CGAL::Nef_polyhedron_3<detail::ExactKernel>;
+
+//! The volume of a regularized Nef polyhedron, exactly (divergence theorem
+//! over its boundary shells, each oriented with the volume on its inside),
+//! then rounded.
+double nef_volume(const Nef& nef) {
+  if (nef.is_empty()) return 0.0;
+  std::vector<detail::ExactPoint> points;
+  std::vector<std::vector<std::size_t>> polygons;
+  CGAL::convert_nef_polyhedron_to_polygon_soup(nef, points, polygons, /*triangulate_all_faces=*/true);
+  detail::ExactKernel::FT six_volume = 0;
+  const detail::ExactPoint origin(0, 0, 0);
+  for (const auto& poly : polygons)
+    for (std::size_t k = 1; k + 1 < poly.size(); ++k)
+      six_volume += CGAL::determinant(points[poly[0]] - origin, points[poly[k]] - origin, points[poly[k + 1]] - origin);
+  return CGAL::to_double(six_volume / 6);
+}
+
+//! vol(a ∩ b) or vol(a \ b) of two exact closed meshes on Nef polyhedra:
+//! slower than the corefinement, but defined when the result is not a
+//! 2-manifold (it is regularized: the lower-dimensional contact is dropped).
+double nef_volume_of(const ExactMesh& a, const ExactMesh& b, NefBoolean op) {
+  const Nef na(a), nb(b);
+  const Nef result = op == NefBoolean::Intersection ? (na * nb) : (na - nb);
+  return std::max(0.0, nef_volume(result.regularization()));
+}
+
+//! vol(a ∩ b) of two exact closed meshes (consumed). The corefinement first;
+//! when neither the intersection nor a difference is a 2-manifold, Nef
+//! polyhedra.
+double exact_overlap(ExactMesh ea, ExactMesh eb) {
+  const ExactMesh a0 = ea, b0 = eb;
   ExactMesh a2 = ea, b2 = eb, out;
   if (guarded([&] {
         return PMP::corefine_and_compute_intersection(ea, eb, out, kThrowOnSelfIntersection, kThrowOnSelfIntersection);
@@ -81,7 +113,7 @@ std::optional<double> exact_overlap(ExactMesh ea, ExactMesh eb) {
         return PMP::corefine_and_compute_difference(b3, a3, diff_b, kThrowOnSelfIntersection, kThrowOnSelfIntersection);
       }))
     return std::max(0.0, vb - mesh_volume(diff_b));
-  return std::nullopt;
+  return nef_volume_of(a0, b0, NefBoolean::Intersection);
 }
 
 //! m ∩ box, exactly; false when CGAL cannot clip it into a 2-manifold.
@@ -122,15 +154,20 @@ double blocks_overlap(const Mesh& a, const Mesh& b) {
     if (clipped) {
       if (ea.number_of_faces() == 0 || eb.number_of_faces() == 0) return 0.0;
       try {
-        if (const auto v = exact_overlap(std::move(ea), std::move(eb))) return *v;
+        return exact_overlap(std::move(ea), std::move(eb));
       } catch (const AlgorithmError&) {
         // CGAL found the clipped pieces self-intersecting (a clip plane through
         // a block face can leave slivers it refuses): use the whole blocks.
       }
     }
   }
-  if (const auto v = exact_overlap(detail::to_exact(a), detail::to_exact(b))) return *v;
-  throw AlgorithmError("exact intersection of two blocks is not a 2-manifold");
+  return exact_overlap(detail::to_exact(a), detail::to_exact(b));
+}
+
+double nef_boolean_volume(const Mesh& a, const Mesh& b, NefBoolean op) {
+  require_boolean_input(a, "the first solid");
+  require_boolean_input(b, "the second solid");
+  return nef_volume_of(detail::to_exact(a), detail::to_exact(b), op);
 }
 
 double volume_outside(const Mesh& block, const Mesh& solid) {
@@ -149,7 +186,7 @@ double volume_outside(const Mesh& block, const Mesh& solid) {
         return PMP::corefine_and_compute_intersection(eb, es, out, kThrowOnSelfIntersection, kThrowOnSelfIntersection);
       }))
     return std::max(0.0, signed_volume(block) - mesh_volume(out));
-  throw AlgorithmError("exact difference of a block and the input is not a 2-manifold");
+  return nef_volume_of(detail::to_exact(block), detail::to_exact(solid), NefBoolean::Difference);
 }
 
 CoverageReport surface_coverage(const Mesh& input, const std::vector<const Mesh*>& blocks,

@@ -72,9 +72,20 @@ bool is_height_field(const Mesh& block, const Vec3& direction, const HeightField
 
 // ------------------------------------------------------------ checks 3, 4
 //! Volume of the intersection of two closed solids, computed with exact
-//! booleans (CGAL corefinement on an exact kernel). 0 when their bounding
-//! boxes do not overlap. \throw AlgorithmError if the boolean fails.
+//! booleans (CGAL corefinement on an exact kernel; Nef polyhedra when the
+//! solids touch so that no corefinement result is a 2-manifold). 0 when
+//! their bounding boxes do not overlap. \throw AlgorithmError if a block has
+//! degenerate faces or self-intersects.
 double blocks_overlap(const Mesh& a, const Mesh& b);
+
+//! Which boolean nef_boolean_volume() measures.
+enum class NefBoolean { Intersection, Difference };
+
+//! vol(a ∩ b) or vol(a \ b) of two closed solids on exact Nef polyhedra
+//! (CGAL Nef_polyhedron_3, regularized): much slower than the corefinement,
+//! but defined when the result is not a 2-manifold (solids touching along an
+//! edge or at a point). The fallback of blocks_overlap() and volume_outside().
+double nef_boolean_volume(const Mesh& a, const Mesh& b, NefBoolean op);
 
 //! A rigorous upper bound of the volume of the intersection of two solids
 //! (closed meshes): the volume of the intersection of their extents along
@@ -84,8 +95,9 @@ double blocks_overlap(const Mesh& a, const Mesh& b);
 //! of the rounding error, which settles the pair without a boolean.
 double overlap_volume_bound(const Mesh& a, const Mesh& b, const Eigen::Matrix3d& frame);
 
-//! Volume of `block` outside the closed solid `solid` (exact booleans).
-//! \throw AlgorithmError if the boolean fails.
+//! Volume of `block` outside the closed solid `solid` (exact booleans, with
+//! the same Nef fallback as blocks_overlap()).
+//! \throw AlgorithmError if a mesh has degenerate faces or self-intersects.
 double volume_outside(const Mesh& block, const Mesh& solid);
 
 // ---------------------------------------------------------------- check 5
