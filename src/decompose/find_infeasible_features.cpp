@@ -91,18 +91,46 @@ struct VertexScan {
 
 FeasibilityResult find_infeasible_features(const Mesh& mesh, const FeasibilityOptions& options) {
   const Stars stars(mesh);
-  const std::vector<Signs> signs = detail::exact_normal_signs(mesh);
+  const bool local = !options.only_vertices.empty();
+  // The vertices scanned (all, or the local region, sorted and unique).
+  std::vector<int> scanned = options.only_vertices;
+  if (local) {
+    std::sort(scanned.begin(), scanned.end());
+    scanned.erase(std::unique(scanned.begin(), scanned.end()), scanned.end());
+    if (scanned.front() < 0 || static_cast<std::size_t>(scanned.back()) >= mesh.num_vertices())
+      throw InvalidArgumentError("find_infeasible_features: a vertex id of the local region is out of range");
+  } else {
+    scanned.resize(mesh.num_vertices());
+    for (std::size_t v = 0; v < scanned.size(); ++v) scanned[v] = static_cast<int>(v);
+  }
+  std::vector<char> in_region(local ? mesh.num_vertices() : 0, 0);
+  for (int v : options.only_vertices) in_region[static_cast<std::size_t>(v)] = 1;
+  // Exact normal signs of the faces around the scanned vertices (all faces for the whole mesh).
+  std::vector<Signs> signs;
+  if (local) {
+    signs.resize(mesh.num_faces());
+    for (int v : scanned)
+      for (std::size_t i = stars.begin(static_cast<std::size_t>(v)); i < stars.end(static_cast<std::size_t>(v)); ++i) {
+        const Triangle& t = mesh.faces[static_cast<std::size_t>(stars.faces[i])];
+        signs[static_cast<std::size_t>(stars.faces[i])] = detail::exact_normal_signs(
+            mesh.vertices[static_cast<std::size_t>(t[0])], mesh.vertices[static_cast<std::size_t>(t[1])],
+            mesh.vertices[static_cast<std::size_t>(t[2])]);
+      }
+  } else {
+    signs = detail::exact_normal_signs(mesh);
+  }
   std::vector<unsigned> mask(mesh.num_faces());
   for (std::size_t f = 0; f < mesh.num_faces(); ++f) mask[f] = facing_mask(signs[f]);
   const auto vertex = [&](int v) -> const Vec3& { return mesh.vertices[static_cast<std::size_t>(v)]; };
 
-  std::vector<VertexScan> scans(mesh.num_vertices());
-  std::vector<int> bad_edge_vertex(mesh.num_vertices(), -1);  // first vertex with an open edge (error)
+  std::vector<VertexScan> scans(scanned.size());
+  std::vector<int> bad_edge_vertex(scanned.size(), -1);  // first vertex with an open edge (error)
   parallel_for(
-      0, mesh.num_vertices(),
-      [&](std::size_t pi) {
-        const int p = static_cast<int>(pi);
-        VertexScan& scan = scans[pi];
+      0, scanned.size(),
+      [&](std::size_t si) {
+        const int p = scanned[si];
+        const std::size_t pi = static_cast<std::size_t>(p);
+        VertexScan& scan = scans[si];
         // --- Edges (p, q) with p < q: f has p -> q, g has q -> p.
         if (options.check_edges) {
           for (std::size_t i = stars.begin(pi); i < stars.end(pi); ++i) {
@@ -117,10 +145,10 @@ FeasibilityResult find_infeasible_features(const Mesh& mesh, const FeasibilityOp
               if (tg[static_cast<std::size_t>((cg + 2) % 3)] == q) g = stars.faces[j];
             }
             if (g < 0) {
-              bad_edge_vertex[pi] = p;
+              bad_edge_vertex[si] = p;
               continue;
             }
-            if (q < p) continue;  // tested from q
+            if (q < p && (!local || in_region[static_cast<std::size_t>(q)])) continue;  // tested from q
             const Triangle& tg = mesh.faces[static_cast<std::size_t>(g)];
             const Vec3& w = vertex(tf[static_cast<std::size_t>((c + 2) % 3)]);
             const Vec3& wg = vertex(tg[static_cast<std::size_t>((corner_of(tg, p) + 1) % 3)]);
@@ -130,8 +158,8 @@ FeasibilityResult find_infeasible_features(const Mesh& mesh, const FeasibilityOp
             if (!f_blocked && !g_blocked) continue;
             InfeasibleFeature e;
             e.kind = InfeasibleFeature::Kind::Edge;
-            e.vertex0 = p;
-            e.vertex1 = q;
+            e.vertex0 = std::min(p, q);  // q < p only for an edge leaving the local region
+            e.vertex1 = std::max(p, q);
             e.face = f_blocked && g_blocked ? std::min(f, g) : (f_blocked ? f : g);
             e.blocking_face = e.face == f ? g : f;
             scan.edges.push_back(e);

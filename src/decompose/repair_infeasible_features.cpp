@@ -5,6 +5,7 @@
 #include <array>
 #include <utility>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -33,6 +34,7 @@ void check_options(const RepairOptions& o) {
   if (o.band_rings < 1) throw InvalidArgumentError("repair: band_rings must be >= 1");
   if (o.widen_every < 1) throw InvalidArgumentError("repair: widen_every must be >= 1");
   if (o.smoothing_steps < 1) throw InvalidArgumentError("repair: smoothing_steps must be >= 1");
+  if (o.max_stalled_rounds < 1) throw InvalidArgumentError("repair: max_stalled_rounds must be >= 1");
   if (!(o.lambda > 0 && o.lambda < 1)) throw InvalidArgumentError("repair: Taubin lambda must be in (0, 1)");
   if (!(o.mu == 0 || (o.mu < -o.lambda && o.mu > -1)))
     throw InvalidArgumentError("repair: Taubin mu must be 0 (plain Laplacian) or in (-1, -lambda)");
@@ -374,18 +376,121 @@ std::vector<Vec3> smoothed_ring(const Mesh& mesh, const std::vector<std::vector<
   return pos;
 }
 
+//! The link of p: its neighbours in cyclic order (each face (p, q, r) gives
+//! q before r); empty if the faces around p are not one disc.
+std::vector<int> link_cycle(const Mesh& mesh, const std::vector<int>& star_p, int p) {
+  std::vector<std::pair<int, int>> next;
+  for (int f : star_p) {
+    const Triangle& t = mesh.faces[static_cast<std::size_t>(f)];
+    const int c = t[0] == p ? 0 : (t[1] == p ? 1 : 2);
+    next.emplace_back(t[(c + 1) % 3], t[(c + 2) % 3]);
+  }
+  std::vector<int> cycle;
+  int v = next.empty() ? -1 : next.front().first;
+  for (std::size_t i = 0; i < next.size(); ++i) {
+    cycle.push_back(v);
+    const auto it = std::find_if(next.begin(), next.end(), [&](const auto& e) { return e.first == v; });
+    if (it == next.end()) return {};
+    v = it->second;
+  }
+  if (next.empty() || v != cycle.front()) return {};
+  return cycle;
+}
+
+//! Chamfers a sharp ridge at vertex p (thesis 4.3.5: a fillet of one strip,
+//! made at the vertex where no axis sees the two sides together): the faces
+//! around p from link vertex a = cycle[i] to b = cycle[j] keep p, moved to
+//! x1; the others get a new vertex at x2; two new faces (a, p, p') and
+//! (b, p', p) join them. Each side's star can then face one of its own axes
+//! and the strip faces one axis of each side. Both points keep p's reference
+//! (the strip maps onto the ridge edges a-p and p-b), so the deviation bound
+//! is max(|x1 - ref|, |x2 - ref|). Returns false (w unchanged) when a face
+//! around p would flip or degenerate.
+bool chamfer_vertex(Work& w, const std::vector<int>& star_p, int p, const std::vector<int>& cycle, std::size_t i,
+                    std::size_t j, const Vec3& x1, const Vec3& x2) {
+  const std::size_t n = cycle.size();
+  std::vector<char> first_side(w.mesh.vertices.size(), 0);
+  for (std::size_t k = i; k != j; k = (k + 1) % n) first_side[static_cast<std::size_t>(cycle[k])] = 1;
+  std::vector<Vec3> before;
+  for (int f : star_p) before.push_back(face_normal_scaled(w.mesh, static_cast<std::size_t>(f)));
+  Work c = w;
+  const int p2 = static_cast<int>(c.mesh.vertices.size());
+  c.mesh.vertices.push_back(x2);
+  c.reference.vertices.push_back(c.reference.vertices[static_cast<std::size_t>(p)]);
+  c.mesh.vertices[static_cast<std::size_t>(p)] = x1;
+  for (int f : star_p) {
+    Triangle& t = c.mesh.faces[static_cast<std::size_t>(f)];
+    const int k = t[0] == p ? 0 : (t[1] == p ? 1 : 2);
+    if (!first_side[static_cast<std::size_t>(t[(k + 1) % 3])]) t[k] = p2;  // its link edge starts on the other side
+  }
+  c.mesh.faces.push_back({cycle[i], p, p2});
+  c.mesh.faces.push_back({cycle[j], p2, p});
+  c.reference.faces = c.mesh.faces;
+  for (std::size_t k = 0; k < star_p.size(); ++k) {
+    const Vec3 nk = face_normal_scaled(c.mesh, static_cast<std::size_t>(star_p[k]));
+    if (!(nk.dot(before[k]) > 0.25 * nk.norm() * before[k].norm())) return false;  // turns by less than ~75 degrees
+  }
+  for (std::size_t f = c.mesh.faces.size() - 2; f < c.mesh.faces.size(); ++f)
+    if (!(face_normal_scaled(c.mesh, f).squaredNorm() > 0)) return false;
+  w = std::move(c);
+  return true;
+}
+
 bool same_feature(const InfeasibleFeature& a, const InfeasibleFeature& b) {
   return a.kind == b.kind && a.vertex0 == b.vertex0 && a.vertex1 == b.vertex1;
+}
+
+//! Vertices of the faces an edit changed, before (`old`) or after (`now`) it:
+//! faces with other vertex ids or a moved vertex, and the appended faces (the
+//! edits only append vertices and faces). Only their corners and edges can
+//! have changed feasibility.
+std::vector<int> edited_region(const Mesh& old, const Mesh& now) {
+  std::vector<char> moved(now.vertices.size(), 1);
+  for (std::size_t v = 0; v < old.vertices.size(); ++v) moved[v] = old.vertices[v] != now.vertices[v];
+  std::vector<int> region;
+  for (std::size_t f = 0; f < now.faces.size(); ++f) {
+    const Triangle& t = now.faces[f];
+    const bool changed = f >= old.faces.size() || t != old.faces[f] ||
+                         std::any_of(t.begin(), t.end(), [&](int v) { return moved[static_cast<std::size_t>(v)] != 0; });
+    if (!changed) continue;
+    region.insert(region.end(), t.begin(), t.end());
+    if (f < old.faces.size()) region.insert(region.end(), old.faces[f].begin(), old.faces[f].end());
+  }
+  std::sort(region.begin(), region.end());
+  region.erase(std::unique(region.begin(), region.end()), region.end());
+  return region;
+}
+
+//! Does the edit from `old` to `now` leave strictly fewer infeasible
+//! features? Decided by the exact test on the edited region only (the rest of
+//! the surface is unchanged, so the difference of the local counts is the
+//! difference of the whole mesh's).
+bool has_fewer_features(const Mesh& old, const Mesh& now) {
+  const std::vector<int> region = edited_region(old, now);
+  if (region.empty()) return false;
+  std::vector<int> old_region;
+  for (int v : region)
+    if (static_cast<std::size_t>(v) < old.vertices.size()) old_region.push_back(v);
+  if (old_region.empty()) return false;  // only new faces: nothing was infeasible here
+  const std::size_t before = find_infeasible_features(old, FeasibilityOptions{.only_vertices = old_region}).size();
+  return before > 0 && find_infeasible_features(now, FeasibilityOptions{.only_vertices = region}).size() < before;
 }
 
 //! Tries the local edits for one feature, cheapest first; keeps the first one
 //! after which the exact test finds fewer features (then `features` is that
 //! test's result) and returns whether there was one.
-bool fix_feature(Work& w, const InfeasibleFeature& feature, FeasibilityResult& features, double cap) {
+//! Which local edits fix_feature() tries.
+enum class Edits {
+  Basic,            // splits, vertex moves, disc smoothing
+  WithRidgeChamfer  // and, last, the ridge chamfer (once refinement no longer helps)
+};
+
+bool fix_feature(Work& w, const InfeasibleFeature& feature, FeasibilityResult& features, double cap, Edits edits) {
   const std::size_t before = features.size();
   const auto accept = [&](Work& candidate) {
+    if (!has_fewer_features(w.mesh, candidate.mesh)) return false;
     FeasibilityResult r = find_infeasible_features(candidate.mesh);
-    if (r.size() >= before) return false;
+    if (r.size() >= before) return false;  // cannot happen (the local counts are exact); kept as a guard
     features = std::move(r);
     w = std::move(candidate);
     return true;
@@ -421,6 +526,32 @@ bool fix_feature(Work& w, const InfeasibleFeature& feature, FeasibilityResult& f
       Work c = w;
       if (move_vertices(c, star, movable, positions, cap) && accept(c)) return true;
     }
+  // 4. Chamfer the ridge at a feature vertex: split its faces into two sides
+  //    (at link vertices a, b not adjacent in the link) and join them with a
+  //    strip, the two copies of the vertex moved a small fraction of the way
+  //    into their sides (smallest first).
+  if (edits != Edits::WithRidgeChamfer) return false;
+  for (int p : centres) {
+    const std::vector<int>& star_p = star[static_cast<std::size_t>(p)];
+    const std::vector<int> cycle = link_cycle(w.mesh, star_p, p);
+    const std::size_t n = cycle.size();
+    if (n < 4) continue;
+    const Vec3 pp = w.mesh.vertices[static_cast<std::size_t>(p)];
+    const Vec3 ref = w.reference.vertices[static_cast<std::size_t>(p)];
+    for (double t : {0.03125, 0.125, 0.5})
+      for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t j = (i + 2) % n; (j + 1) % n != i; j = (j + 1) % n) {
+          Vec3 m1 = Vec3::Zero(), m2 = Vec3::Zero();  // centroids of each side's inner link vertices
+          for (std::size_t k = (i + 1) % n; k != j; k = (k + 1) % n) m1 += w.mesh.vertices[static_cast<std::size_t>(cycle[k])];
+          for (std::size_t k = (j + 1) % n; k != i; k = (k + 1) % n) m2 += w.mesh.vertices[static_cast<std::size_t>(cycle[k])];
+          m1 /= static_cast<double>((j + n - i) % n - 1);
+          m2 /= static_cast<double>((i + n - j) % n - 1);
+          const Vec3 x1 = pp + t * (m1 - pp), x2 = pp + t * (m2 - pp);
+          if (!((x1 - ref).norm() <= cap && (x2 - ref).norm() <= cap)) continue;
+          Work c = w;
+          if (chamfer_vertex(c, star_p, p, cycle, i, j, x1, x2) && accept(c)) return true;
+        }
+  }
   return false;
 }
 
@@ -457,6 +588,10 @@ RepairResult repair_infeasible_features(const Mesh& input, const RepairOptions& 
   {
     Work w{input, input};
     int level = 0;
+    // The chamfer is tried only once refinement is exhausted: on the refined
+    // stars its strip is small, and the meshes the other edits repair are
+    // repaired exactly as without it.
+    Edits edits = Edits::Basic;
     // Moves are first limited to a small part of the cap, so that cheap
     // fixes do not use up the deviation that harder features need.
     const std::array<double, 3> budgets{cap / 16, cap / 4, cap};
@@ -468,7 +603,7 @@ RepairResult repair_infeasible_features(const Mesh& input, const RepairOptions& 
         if (std::none_of(features.features.begin(), features.features.end(),
                          [&](const InfeasibleFeature& g) { return same_feature(f, g); }))
           continue;
-        fixed_any = fix_feature(w, f, features, budgets[budget]) || fixed_any;
+        fixed_any = fix_feature(w, f, features, budgets[budget], edits) || fixed_any;
         if (features.feasible()) break;
       }
       ++report.num_rounds;
@@ -494,8 +629,11 @@ RepairResult repair_infeasible_features(const Mesh& input, const RepairOptions& 
       // Bounded work: at most 6 levels, and a few hundred new faces per input
       // feature (a long sharp crease needs the fillet of B, not vertex edits).
       if (split.empty() || ++level > 6 ||
-          w.mesh.faces.size() > input.faces.size() + 400 * static_cast<std::size_t>(report.num_features))
-        break;
+          w.mesh.faces.size() > input.faces.size() + 400 * static_cast<std::size_t>(report.num_features)) {
+        if (edits == Edits::WithRidgeChamfer) break;
+        edits = Edits::WithRidgeChamfer;  // one more pass over the budgets, with the chamfer
+        continue;
+      }
       RefineResult refined = refine_mesh(w.mesh, split);
       w.reference.vertices = refine_mesh(w.reference, split).mesh.vertices;
       w.reference.faces = refined.mesh.faces;
@@ -512,7 +650,20 @@ RepairResult repair_infeasible_features(const Mesh& input, const RepairOptions& 
   // B. What the local edits could not fix (sharp creases that need a fillet
   // of several strips): rounds of band refinement and Taubin smoothing.
 
+  // Fewest features after a round of B so far (the first round sets it: the
+  // refinement first multiplies the features of the input), and the rounds
+  // since that count last dropped.
+  std::size_t fewest = std::numeric_limits<std::size_t>::max();
+  int stalled = 0;
   for (int round = 0; !features.feasible(); ++round) {
+    if (stalled >= options.max_stalled_rounds) {
+      std::ostringstream msg;
+      msg << "cannot repair " << summary(mesh, features) << ": " << stalled
+          << " rounds of local refinement and smoothing did not reduce the number of features below " << fewest
+          << "; the model cannot be decomposed into exact height-field blocks in this frame (try another "
+             "orientation, or smooth the model there)";
+      throw AlgorithmError(msg.str());
+    }
     if (round >= options.max_rounds) {
       std::ostringstream msg;
       msg << "cannot repair " << summary(mesh, features) << " within " << options.max_rounds
@@ -578,6 +729,12 @@ RepairResult repair_infeasible_features(const Mesh& input, const RepairOptions& 
     }
     ++report.num_rounds;
     features = find_infeasible_features(mesh);
+    if (features.size() < fewest) {
+      fewest = features.size();
+      stalled = 0;
+    } else {
+      ++stalled;
+    }
     if (progress) {
       std::ostringstream msg;
       msg << "repair round " << round + 1 << ": " << mesh.faces.size() << " faces, " << movable.size()

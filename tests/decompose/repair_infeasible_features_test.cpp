@@ -12,6 +12,7 @@
 #include "subfab/decompose/decompose.h"
 #include "subfab/decompose/find_infeasible_features.h"
 #include "subfab/decompose/grow_boxes.h"
+#include "subfab/decompose/orient_mesh.h"
 #include "subfab/mesh/read_mesh.h"
 #include "test_support.h"
 
@@ -172,6 +173,55 @@ TEST(RepairInfeasibleFeatures, AnchorFlukeTipsAreStraightened) {
   expect_repaired(anchor, r, o);
   EXPECT_LE(r.report.max_deviation_fraction(), 0.002);
   EXPECT_LE(r.report.num_faces_new, 40);
+}
+
+TEST(RepairInfeasibleFeatures, DecimatedKnightRidgePeaksAreChamfered) {
+  // decimated_knight.off (infeasible in every frame; decompose keeps the
+  // input frame): the local edits and refinement leave 4 vertices on sharp
+  // ridges (normals about 114 degrees apart, e.g. (0.27 0.07 0.96) and
+  // (-0.96 -0.25 -0.14) at vertex 15) where the ridge peaks: both sides
+  // reach into one open orthant, so no axis sees a corner there, and no
+  // single-vertex move or smoothing fixes it. Before the ridge chamfer the
+  // repair ended there (and stage B did not converge either).
+  const Mesh knight = rotate_into_frame(read_mesh(test::data_path("decimated_knight.off")),
+                                        Eigen::Matrix3d::Identity(), OrientOptions{}.snap_tolerance);
+  const FeasibilityResult features = find_infeasible_features(knight);
+  ASSERT_EQ(features.size(), 59u);
+  const RepairOptions o{};
+  const RepairResult r = repair_infeasible_features(knight, o);
+  expect_repaired(knight, r, o);
+  RepairResult one;
+  {
+    ThreadLimit limit(1);
+    one = repair_infeasible_features(knight, o);
+  }
+  EXPECT_EQ(one.mesh.vertices, r.mesh.vertices);
+  EXPECT_EQ(one.mesh.faces, r.mesh.faces);
+  EXPECT_EQ(one.report.max_deviation, r.report.max_deviation);
+}
+
+TEST(RepairInfeasibleFeatures, LocalExactTestCountsLikeTheWholeMesh) {
+  // The repair decides each edit on the edited region only: the difference
+  // of the local counts must be that of the whole mesh.
+  const Mesh spike = make_cube_with_diagonal_spike();
+  const FeasibilityResult whole = find_infeasible_features(spike);
+  std::vector<int> all(spike.num_vertices());
+  for (std::size_t v = 0; v < all.size(); ++v) all[v] = static_cast<int>(v);
+  EXPECT_EQ(find_infeasible_features(spike, FeasibilityOptions{.only_vertices = all}).size(), whole.size());
+  const FeasibilityResult tip = find_infeasible_features(spike, FeasibilityOptions{.only_vertices = {11}});
+  ASSERT_EQ(tip.size(), 1u);
+  EXPECT_EQ(tip.features.front().vertex0, 11);
+  EXPECT_TRUE(find_infeasible_features(spike, FeasibilityOptions{.only_vertices = {0, 1, 2}}).feasible());
+  const Mesh wedge = make_oblique_wedge();
+  // The sharp edge (0, 3) is found from either end, once.
+  const FeasibilityResult from3 =
+      find_infeasible_features(wedge, FeasibilityOptions{.check_vertices = false, .only_vertices = {3}});
+  ASSERT_EQ(from3.size(), 1u);
+  EXPECT_EQ(from3.features.front().vertex0, 0);
+  EXPECT_EQ(from3.features.front().vertex1, 3);
+  EXPECT_EQ(find_infeasible_features(wedge, FeasibilityOptions{.check_vertices = false, .only_vertices = {0, 3}}).size(),
+            1u);
+  EXPECT_THROW(find_infeasible_features(wedge, FeasibilityOptions{.only_vertices = {6}}), InvalidArgumentError);
 }
 
 TEST(RepairInfeasibleFeatures, CapsAreEnforced) {

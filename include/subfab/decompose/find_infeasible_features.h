@@ -64,6 +64,11 @@ struct InfeasibleFeature {
 struct FeasibilityOptions {
   bool check_edges = true;     // edge (crease) test
   bool check_vertices = true;  // vertex (corner / spike) test
+  // Local test: only the corners at these vertex ids and the edges with an end
+  // among them (each once); empty = every vertex. Given the vertices of every
+  // face an edit changed (before and after it), the difference of the two
+  // local counts is that of the whole mesh, at the cost of the region only.
+  std::vector<int> only_vertices;
 };
 
 //! Result of find_infeasible_features().
@@ -82,7 +87,11 @@ struct FeasibilityResult {
 //! edge or vertex is listed once, with the first face (by id) it blocks.
 //! \param mesh closed, manifold, consistently oriented (outward normals)
 //!        triangle mesh; #V vertices, #F faces.
+//! With `options.only_vertices`, only that region is scanned (see
+//! FeasibilityOptions), in time proportional to its stars plus one pass over
+//! the face list.
 //! \throw InvalidMeshError if an edge has no opposite directed edge.
+//! \throw InvalidArgumentError if a vertex id of the region is out of range.
 FeasibilityResult find_infeasible_features(const Mesh& mesh, const FeasibilityOptions& options = {});
 
 //! Human-readable list of the first `max_listed` features with positions

@@ -16,8 +16,9 @@
 //! Outline of repair_infeasible_features():
 //!   1. features = exact local test; none: return the input unchanged;
 //!   A. local edits, each kept only if the exact test then finds strictly
-//!      fewer features (so this stage moves towards feasibility and ends),
-//!      tried per feature, cheapest first:
+//!      fewer features (so this stage moves towards feasibility and ends;
+//!      the test is run on the edited region only, whose count difference is
+//!      the whole mesh's), tried per feature, cheapest first:
 //!      - a "splittable" vertex: split its faces along the coordinate planes
 //!        through it (no deviation);
 //!      - move one vertex (the feature's, then a neighbour): towards the
@@ -27,13 +28,24 @@
 //!        (exact half-spaces: the normal is linear in the vertex), so the
 //!        axis sees the vertex and its edges;
 //!      - Laplacian smoothing of a disc of 1 to 3 rings around the feature;
+//!      - once refinement is exhausted (below), a chamfer of a sharp ridge
+//!        at a feature vertex (a peak of the ridge,
+//!        where both sides reach into one orthant and no axis sees them
+//!        together): its faces are split into two sides at two link
+//!        vertices a, b, the vertex is doubled, each copy moved 1/32, 1/8 or
+//!        1/2 of the way into its side, and a strip of two faces (a, p, p'),
+//!        (b, p', p) joins them: each side's star can then face its own axis
+//!        and the strip faces one axis of each;
 //!      moves are limited to 1/16, then 1/4, then all of the deviation cap;
 //!      when no edit helps, the stars of the remaining features are refined
 //!      one-to-four (at most 6 levels, a few hundred faces per feature) and
-//!      the edits are tried again;
+//!      the edits are tried again; after the last level, once more with the
+//!      chamfer;
 //!   B. if features remain, start again from the input with rounds of band
 //!      refinement and smoothing (sharp creases that need a fillet of many
-//!      strips); repeat (at most `max_rounds` times) while features remain:
+//!      strips); repeat (at most `max_rounds` times, and giving up after
+//!      `max_stalled_rounds` rounds that do not reduce the number of
+//!      features below its best) while features remain:
 //!      a. band = faces within `band_rings` edge rings of the feature
 //!         vertices (one ring more every `widen_every` rounds);
 //!      b. refine the band one-to-four (conforming, refine_mesh) until the
@@ -70,6 +82,7 @@ struct RepairOptions {
                                 // the bbox diagonal (> 0); sets the fillet size (a few such lengths)
   int band_rings = 2;           // edge rings around feature vertices that are refined and smoothed (>= 1)
   int widen_every = 4;          // the band grows by one ring every this many rounds (>= 1)
+  int max_stalled_rounds = 4;   // B gives up after this many rounds without fewer features than its best (>= 1)
   int smoothing_steps = 10;     // Taubin (lambda, mu) step pairs per round (>= 1)
   double lambda = 0.5;          // Taubin shrink factor, in (0, 1)
   double mu = -0.53;            // Taubin inflate factor, < -lambda (no shrinkage, Taubin 1995); 0 = plain Laplacian
