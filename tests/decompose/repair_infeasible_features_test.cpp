@@ -175,6 +175,52 @@ TEST(RepairInfeasibleFeatures, AnchorFlukeTipsAreStraightened) {
   EXPECT_LE(r.report.num_faces_new, 40);
 }
 
+//! The star of a ridge peak (vertex 0) closed by a cone to vertex 9, after
+//! vertex 15 of decimated_knight.off (offsets x100): top faces with normals
+//! near (0.25 0.07 0.96), an overhanging side near (-0.96 -0.2 -0.2), both
+//! ridge edges (0-3, 0-7) descending. Vertex 0 is its only infeasible
+//! feature (not splittable): the top corner (0, 1, 2) faces +x, +y, +z and
+//! lies in the open orthant (+, +, -), which the side faces (facing -x, -y,
+//! -z) enter too.
+Mesh make_ridge_peak() {
+  Mesh m;
+  m.vertices = {{0, 0, 0},           {3.35, 2.89, -1.14}, {2.26, 5.06, -1.00},  {0.02, 4.53, -2.03},
+                {0.03, 3.95, -3.88}, {0.75, 1.52, -7.59}, {1.14, -1.30, -2.22}, {0.47, -3.33, -0.26},
+                {2.91, -0.60, -0.66}, {2.59, 1.43, -3.87}};
+  for (int i = 0; i < 8; ++i) {
+    const int a = 1 + i, b = 1 + (i + 1) % 8;
+    m.faces.push_back({0, a, b});
+    m.faces.push_back({9, b, a});
+  }
+  return m;
+}
+
+TEST(RepairInfeasibleFeatures, RidgePeakIsChamfered) {
+  const Mesh peak = make_ridge_peak();
+  Mesh check = peak;
+  ASSERT_NO_THROW(require_closed_solid(check));
+  const FeasibilityResult features = find_infeasible_features(peak);
+  ASSERT_EQ(features.size(), 1u);
+  EXPECT_EQ(features.features.front().kind, InfeasibleFeature::Kind::Vertex);
+  EXPECT_EQ(features.features.front().vertex0, 0);
+  EXPECT_FALSE(features.features.front().splittable);
+  const RepairOptions o{};
+  const RepairResult r = repair_infeasible_features(peak, o);
+  expect_repaired(peak, r, o);
+  // Chamfered at the refined peak, a small strip: without the chamfer only
+  // stage B's fillet repaired it (1214 faces, 0.0013 of the diagonal).
+  EXPECT_LE(r.report.max_deviation_fraction(), 0.0005);
+  EXPECT_LE(r.mesh.faces.size(), 600u);
+  for (int v = 1; v < 10; ++v) EXPECT_EQ(r.mesh.vertices[static_cast<std::size_t>(v)], peak.vertices[static_cast<std::size_t>(v)]);
+  RepairResult one;
+  {
+    ThreadLimit limit(1);
+    one = repair_infeasible_features(peak, o);
+  }
+  EXPECT_EQ(one.mesh.vertices, r.mesh.vertices);
+  EXPECT_EQ(one.mesh.faces, r.mesh.faces);
+}
+
 TEST(RepairInfeasibleFeatures, DecimatedKnightRidgePeaksAreChamfered) {
   // decimated_knight.off (infeasible in every frame; decompose keeps the
   // input frame): the local edits and refinement leave 4 vertices on sharp
