@@ -112,6 +112,18 @@ void expect_repaired(const Mesh& input, const RepairResult& r, const RepairOptio
   EXPECT_NEAR(r.report.bbox_diagonal, bounding_box(input).diagonal(), 1e-12);
 }
 
+//! The repair of `input` with one thread is `r`, bit for bit (deterministic).
+void expect_same_with_one_thread(const Mesh& input, const RepairOptions& o, const RepairResult& r) {
+  RepairResult one;
+  {
+    ThreadLimit limit(1);
+    one = repair_infeasible_features(input, o);
+  }
+  EXPECT_EQ(one.mesh.vertices, r.mesh.vertices);
+  EXPECT_EQ(one.mesh.faces, r.mesh.faces);
+  EXPECT_EQ(one.report.max_deviation, r.report.max_deviation);
+}
+
 TEST(RepairInfeasibleFeatures, ObliqueWedgeIsRepaired) {
   const Mesh wedge = make_oblique_wedge();
   const RepairOptions o{};
@@ -153,13 +165,7 @@ TEST(RepairInfeasibleFeatures, DiagonalSpikeTipIsRepairedLocally) {
   EXPECT_EQ(r.report.num_vertices, 1);
   // Only the spike changed: the cube's corners are where they were.
   for (int v = 0; v < 8; ++v) EXPECT_EQ(r.mesh.vertices[static_cast<std::size_t>(v)], spike.vertices[static_cast<std::size_t>(v)]);
-  RepairResult one;
-  {
-    ThreadLimit limit(1);
-    one = repair_infeasible_features(spike, o);
-  }
-  EXPECT_EQ(one.mesh.vertices, r.mesh.vertices);
-  EXPECT_EQ(one.mesh.faces, r.mesh.faces);
+  expect_same_with_one_thread(spike, o, r);
 }
 
 TEST(RepairInfeasibleFeatures, AnchorFlukeTipsAreStraightened) {
@@ -212,13 +218,7 @@ TEST(RepairInfeasibleFeatures, RidgePeakIsChamfered) {
   EXPECT_LE(r.report.max_deviation_fraction(), 0.0005);
   EXPECT_LE(r.mesh.faces.size(), 600u);
   for (int v = 1; v < 10; ++v) EXPECT_EQ(r.mesh.vertices[static_cast<std::size_t>(v)], peak.vertices[static_cast<std::size_t>(v)]);
-  RepairResult one;
-  {
-    ThreadLimit limit(1);
-    one = repair_infeasible_features(peak, o);
-  }
-  EXPECT_EQ(one.mesh.vertices, r.mesh.vertices);
-  EXPECT_EQ(one.mesh.faces, r.mesh.faces);
+  expect_same_with_one_thread(peak, o, r);
 }
 
 TEST(RepairInfeasibleFeatures, DecimatedKnightRidgePeaksAreChamfered) {
@@ -236,14 +236,7 @@ TEST(RepairInfeasibleFeatures, DecimatedKnightRidgePeaksAreChamfered) {
   const RepairOptions o{};
   const RepairResult r = repair_infeasible_features(knight, o);
   expect_repaired(knight, r, o);
-  RepairResult one;
-  {
-    ThreadLimit limit(1);
-    one = repair_infeasible_features(knight, o);
-  }
-  EXPECT_EQ(one.mesh.vertices, r.mesh.vertices);
-  EXPECT_EQ(one.mesh.faces, r.mesh.faces);
-  EXPECT_EQ(one.report.max_deviation, r.report.max_deviation);
+  expect_same_with_one_thread(knight, o, r);
 }
 
 TEST(RepairInfeasibleFeatures, LocalExactTestCountsLikeTheWholeMesh) {
