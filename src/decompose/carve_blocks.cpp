@@ -6,8 +6,10 @@
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <numeric>
+#include <tuple>
 #include <utility>
 #include <array>
 #include <atomic>
@@ -18,6 +20,7 @@
 #include "decompose/deterministic_arena.h"
 #include "decompose/exact_mesh.h"
 #include "decompose/solid_index.h"
+#include "decompose/triangle_meets_closed_box.h"
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
 
@@ -446,6 +449,23 @@ std::vector<ExactMesh> clip_to_box(const Mesh& solid, const detail::SolidIndex& 
   return split_soup(soup);
 }
 
+//! A face of a box of the carving order: box `box`, plane x_k = min[k]
+//! (side -1) or max[k] (side +1).
+struct BoxFace {
+  std::size_t box = 0;
+  int k = 0;
+  int side = 0;
+  auto key() const { return std::make_tuple(box, k, side); }
+  bool operator<(const BoxFace& o) const { return key() < o.key(); }
+  bool operator==(const BoxFace& o) const { return key() == o.key(); }
+};
+
+//! A contact no axis-aligned cut separated: the faces of the region (of the
+//! box itself or of an earlier box) that hold the whole contact.
+struct Contact {
+  std::vector<BoxFace> faces;
+};
+
 //! The per-box work product.
 struct BoxPieces {
   std::vector<Mesh> pieces;
@@ -453,6 +473,7 @@ struct BoxPieces {
   bool split_region = false;
   std::size_t num_pinch_cuts = 0;  // planes cut through pinch points
   std::size_t num_unresolved_pinches = 0;  // pinch points no cut separated
+  std::vector<Contact> contacts;   // the region faces holding them
   detail::RoundingReport rounding;
 };
 
@@ -482,6 +503,25 @@ std::vector<ExactPoint> pinch_points(ExactMesh& mesh) {
   mesh.remove_property_map(fcc);
   std::sort(out.begin(), out.end(), ExactPointLess());
   out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+//! The contact at pinch point p of `mesh`: p and the far ends of the edges
+//! that the umbrellas at p share geometrically (two vertices at p joined to
+//! two vertices at one point q: the surface touches the region along the
+//! segment pq). Sorted, unique, p included.
+std::vector<ExactPoint> contact_points(const ExactMesh& mesh, const ExactPoint& p) {
+  std::map<ExactPoint, std::vector<VertexIndex>, ExactPointLess> ends;  // far end -> vertices at p
+  for (VertexIndex v : mesh.vertices()) {
+    if (mesh.is_isolated(v) || mesh.point(v) != p) continue;
+    for (HalfedgeIndex h : CGAL::halfedges_around_target(mesh.halfedge(v), mesh)) {
+      auto& at = ends[mesh.point(mesh.source(h))];
+      if (std::find(at.begin(), at.end(), v) == at.end()) at.push_back(v);
+    }
+  }
+  std::vector<ExactPoint> out{p};
+  for (const auto& [q, at] : ends)
+    if (at.size() > 1) out.push_back(q);
   return out;
 }
 
@@ -605,11 +645,13 @@ void carve_in_arena(const Mesh& solid, const detail::SolidIndex& index, const st
                     std::size_t i, BoxPieces& out) {
   const Box3& box = boxes[i].box;
   std::vector<Box3> holes;
+  std::vector<std::size_t> hole_ids;
   for (std::size_t j = 0; j < i; ++j) {
     const Box3& other = boxes[j].box;
     if (!other.overlaps(box)) continue;
     if (other.contains(box.min) && other.contains(box.max)) return;  // fully taken
     holes.push_back(other);
+    hole_ids.push_back(j);
   }
   // Carve the region; where a piece touches itself (pinch_points), cut the
   // region through the pinch and carve again (a cut plane may touch the
@@ -635,8 +677,27 @@ void carve_in_arena(const Mesh& solid, const detail::SolidIndex& index, const st
     std::sort(pinches.begin(), pinches.end(), ExactPointLess());
     if (round == kMaxPinchRounds || !add_pinch_cuts(pinches, box, holes, cuts, out.num_pinch_cuts)) {
       // No axis-aligned plane through the contacts left to try: keep the
-      // pieces (finalize_blocks() reports the block that touches itself).
+      // pieces and report the region faces that hold each contact
+      // (carve_blocks() moves one of them off the contact and carves again).
       out.num_unresolved_pinches = pinches.size();
+      for (ExactMesh& piece : pieces)
+        for (const ExactPoint& p : pinch_points(piece)) {
+          const std::vector<ExactPoint> contact = contact_points(piece, p);
+          std::vector<BoxFace> faces;
+          auto add_faces = [&](const Box3& b, std::size_t id) {
+            for (int k = 0; k < 3; ++k)
+              for (int side : {-1, 1}) {
+                const FT plane(side < 0 ? b.min[k] : b.max[k]);
+                if (std::all_of(contact.begin(), contact.end(),
+                                [&](const ExactPoint& q) { return q[k] == plane && on_box_face(q, b, k); }))
+                  faces.push_back({id, k, side});
+              }
+          };
+          add_faces(box, i);
+          for (std::size_t h = 0; h < holes.size(); ++h) add_faces(holes[h], hole_ids[h]);
+          detail::SuspendArena heap;  // the report outlives the arena
+          out.contacts.push_back(Contact{std::vector<BoxFace>(faces.begin(), faces.end())});
+        }
       break;
     }
   }
@@ -668,6 +729,140 @@ BoxPieces carve_one(const Mesh& solid, const detail::SolidIndex& index, const st
   if (!error.empty()) throw AlgorithmError("carving box " + std::to_string(i) + ": " + error);
   return out;
 }
+
+//! Moves box faces off the contacts that no axis-aligned cut separated
+//! (carve_blocks()). The region of a box is bounded by its own faces and by
+//! faces of earlier boxes (holes); a contact lies in one of them, with the
+//! solid on both sides of that plane (the solid is a 2-manifold: the two
+//! pieces that touch there are joined across the plane). Moving that face
+//! by a small distance across the contact removes it: an own face moved
+//! outward joins the pieces across it, a hole face moved into the region
+//! leaves the pieces apart. Both moves ENLARGE a box, so every triangle a
+//! box held is still held (coverage is kept by construction); the moved box
+//! must stay exactly valid (SolidIndex::box_is_valid) and within the size
+//! limits. Later boxes take the enlarged box as a hole, so the regions stay
+//! disjoint. Deterministic: moves are decided in box order.
+class ContactMover {
+ public:
+  ContactMover(const detail::SolidIndex& index, std::vector<HeightBox>& boxes, const CarveOptions& options,
+               double diagonal)
+      : index_(index), boxes_(boxes), options_(options), step_(options.contact_move * diagonal) {}
+
+  //! Moves face f by the current step of that face (x10 each time it is
+  //! moved again): outward when the box stays valid and within the limits,
+  //! else inward when every triangle the box gives up that way is covered by
+  //! the shrunk box or another box. Marks the boxes whose region changes
+  //! (the box, and every later box overlapping the old box or the new one).
+  //! False when both moves are refused.
+  bool try_move(const BoxFace& f, std::vector<char>& dirty) {
+    HeightBox& hb = boxes_[f.box];
+    int& count = num_moved_[f];
+    if (count >= kMaxMovesPerFace) return false;
+    const double step = step_ * std::pow(10.0, count);
+    const double at = f.side < 0 ? hb.box.min[f.k] : hb.box.max[f.k];
+    Box3 moved = hb.box;
+    double& c = f.side < 0 ? moved.min[f.k] : moved.max[f.k];
+    c = at + f.side * step;
+    bool ok = box_fits_limits(moved, hb.axis, options_.max_height, options_.machine_size) &&
+              index_.box_is_valid(moved, hb.axis);
+    if (!ok) {
+      c = at - f.side * step;
+      ok = moved.min[f.k] < moved.max[f.k] && keeps_coverage(f, moved);
+    }
+    if (!ok) return false;
+    Box3 hull = hb.box;
+    hull.min = hull.min.cwiseMin(moved.min);
+    hull.max = hull.max.cwiseMax(moved.max);
+    hb.box = moved;
+    ++count;
+    ++num_moves_;
+    for (std::size_t j = f.box; j < boxes_.size(); ++j)
+      if (j == f.box || boxes_[j].box.overlaps(hull)) dirty[j] = 1;
+    return true;
+  }
+
+  std::size_t num_moves() const { return num_moves_; }
+
+ private:
+  //! Box f.box shrunk to `shrunk` across face f: is every triangle that
+  //! meets the slab it gives up (closed, exact) still held there by the
+  //! shrunk box or another box? Checked on the part of the slab inside the
+  //! triangle's bounding box, cell by cell of the other boxes' planes.
+  bool keeps_coverage(const BoxFace& f, const Box3& shrunk) const {
+    const Box3& old = boxes_[f.box].box;
+    Box3 slab = old;
+    if (f.side < 0)
+      slab.max[f.k] = shrunk.min[f.k];
+    else
+      slab.min[f.k] = shrunk.max[f.k];
+    const Mesh& mesh = index_.mesh();
+    for (int face : index_.faces_near_closed_box(slab)) {
+      const Triangle& t = mesh.faces[static_cast<std::size_t>(face)];
+      const Vec3& a = mesh.vertices[static_cast<std::size_t>(t[0])];
+      const Vec3& b = mesh.vertices[static_cast<std::size_t>(t[1])];
+      const Vec3& c = mesh.vertices[static_cast<std::size_t>(t[2])];
+      if (!detail::triangle_meets_closed_box(a, b, c, slab)) continue;
+      Box3 part = slab;
+      part.min = part.min.cwiseMax(index_.face_box(face).min);
+      part.max = part.max.cwiseMin(index_.face_box(face).max);
+      if (!part_is_held(part, a, b, c, f.box, shrunk)) return false;
+    }
+    return true;
+  }
+
+  //! Does the union of the closed boxes (box `skip` replaced by `replacement`)
+  //! contain the closed box `part` of the triangle (a, b, c)'s bounding box?
+  //! Where the triangle lies in a box plane, that box holds it only when the
+  //! triangle's normal leaves the box there (the solid on the box's side).
+  bool part_is_held(const Box3& part, const Vec3& a, const Vec3& b, const Vec3& c, std::size_t skip,
+                    const Box3& replacement) const {
+    auto box_at = [&](std::size_t j) -> const Box3& { return j == skip ? replacement : boxes_[j].box; };
+    std::array<std::vector<double>, 3> planes;
+    for (int k = 0; k < 3; ++k) {
+      auto& p = planes[static_cast<std::size_t>(k)];
+      p = {part.min[k], part.max[k]};
+      for (std::size_t j = 0; j < boxes_.size(); ++j)
+        for (double v : {box_at(j).min[k], box_at(j).max[k]})
+          if (v > part.min[k] && v < part.max[k]) p.push_back(v);
+      std::sort(p.begin(), p.end());
+      p.erase(std::unique(p.begin(), p.end()), p.end());
+    }
+    // The dimensions the triangle lies flat in, and its normal's sign there.
+    std::array<int, 3> flat_sign{};
+    for (int k = 0; k < 3; ++k)
+      if (a[k] == b[k] && a[k] == c[k]) flat_sign[static_cast<std::size_t>(k)] = detail::normal_component_sign(a, b, c, k);
+    auto cell_count = [&](int k) { return std::max<std::size_t>(1, planes[static_cast<std::size_t>(k)].size() - 1); };
+    auto coordinate = [&](int k, std::size_t i) {
+      const auto& p = planes[static_cast<std::size_t>(k)];
+      return p.size() == 1 ? p[0] : 0.5 * (p[i] + p[i + 1]);
+    };
+    for (std::size_t ix = 0; ix < cell_count(0); ++ix)
+      for (std::size_t iy = 0; iy < cell_count(1); ++iy)
+        for (std::size_t iz = 0; iz < cell_count(2); ++iz) {
+          const Vec3 q(coordinate(0, ix), coordinate(1, iy), coordinate(2, iz));
+          bool held = false;
+          for (std::size_t j = 0; j < boxes_.size() && !held; ++j) {
+            const Box3& h = box_at(j);
+            held = (q.array() >= h.min.array()).all() && (q.array() <= h.max.array()).all();
+            for (int k = 0; k < 3 && held; ++k) {
+              const int s = flat_sign[static_cast<std::size_t>(k)];
+              if (q[k] == h.min[k] && s != -1) held = false;
+              if (q[k] == h.max[k] && s != 1) held = false;
+            }
+          }
+          if (!held) return false;
+        }
+    return true;
+  }
+
+  static constexpr int kMaxMovesPerFace = 3;
+  const detail::SolidIndex& index_;
+  std::vector<HeightBox>& boxes_;
+  const CarveOptions& options_;
+  double step_;
+  std::map<BoxFace, int> num_moved_;
+  std::size_t num_moves_ = 0;
+};
 
 }  // namespace
 
@@ -725,15 +920,37 @@ void warm_up_exact_booleans() {
 CarveResult carve_blocks(const Mesh& solid, const std::vector<HeightBox>& ordered_boxes,
                          const CarveOptions& options) {
   Progress* progress = options.progress;
+  if (!(options.contact_move > 0) || options.max_contact_rounds < 0)
+    throw InvalidArgumentError("carve_blocks: contact_move must be positive and max_contact_rounds >= 0");
   const detail::SolidIndex index(solid);
-  std::vector<BoxPieces> per_box(ordered_boxes.size());
+  std::vector<HeightBox> boxes = ordered_boxes;
+  std::vector<BoxPieces> per_box(boxes.size());
   std::atomic<std::size_t> done{0};
-  parallel_for(0, ordered_boxes.size(), [&](std::size_t i) {
-    per_box[i] = carve_one(solid, index, ordered_boxes, i);
-    if (progress) progress->update(++done, ordered_boxes.size());
+  parallel_for(0, boxes.size(), [&](std::size_t i) {
+    per_box[i] = carve_one(solid, index, boxes, i);
+    if (progress) progress->update(++done, boxes.size());
   });
 
+  // Contacts no axis-aligned cut separated: move one region face holding
+  // the contact off it, then carve again the boxes whose regions changed.
+  ContactMover mover(index, boxes, options, bounding_box(solid).diagonal());
+  for (int round = 0; round < options.max_contact_rounds; ++round) {
+    std::vector<char> dirty(boxes.size(), 0);
+    for (std::size_t i = 0; i < boxes.size(); ++i)
+      for (const Contact& c : per_box[i].contacts) {
+        if (dirty[i]) break;  // a move this round already changed the region
+        for (const BoxFace& f : c.faces)
+          if (mover.try_move(f, dirty)) break;
+      }
+    std::vector<std::size_t> again;
+    for (std::size_t i = 0; i < boxes.size(); ++i)
+      if (dirty[i]) again.push_back(i);
+    if (again.empty()) break;
+    parallel_for(0, again.size(), [&](std::size_t n) { per_box[again[n]] = carve_one(solid, index, boxes, again[n]); });
+  }
+
   CarveResult result;
+  result.num_moved_faces = mover.num_moves();
   for (std::size_t i = 0; i < per_box.size(); ++i) {
     BoxPieces& p = per_box[i];
     result.num_dropped_pieces += p.num_dropped;
@@ -744,7 +961,7 @@ CarveResult carve_blocks(const Mesh& solid, const std::vector<HeightBox>& ordere
     result.num_degenerate_faces += p.rounding.num_degenerate_faces;
     result.num_flipped_faces += p.rounding.num_flipped_faces;
     for (Mesh& m : p.pieces)
-      result.blocks.push_back(Block{std::move(m), ordered_boxes[i].axis, static_cast<int>(i)});
+      result.blocks.push_back(Block{std::move(m), boxes[i].axis, static_cast<int>(i)});
   }
   if (progress) {
     progress->info(std::to_string(result.blocks.size()) + " blocks carved from " +
@@ -757,6 +974,9 @@ CarveResult carve_blocks(const Mesh& solid, const std::vector<HeightBox>& ordere
       progress->info(std::to_string(result.num_pinched_regions) +
                      " box regions touched by the surface from inside were cut through the contact (" +
                      std::to_string(result.num_pinch_cuts) + " planes)");
+    if (result.num_moved_faces > 0)
+      progress->info(std::to_string(result.num_moved_faces) +
+                     " box faces moved off contacts no axis-aligned cut could separate");
     if (result.num_unresolved_pinches > 0)
       progress->warn(std::to_string(result.num_unresolved_pinches) +
                      " points where the surface touches a box region from inside could not be cut apart: the "

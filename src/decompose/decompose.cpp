@@ -306,6 +306,8 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
     StageScope stage(progress, "carve");
     const auto t = Clock::now();
     CarveOptions co;
+    co.max_height = result.max_height;
+    co.machine_size = machine;
     co.progress = progress;
     CarveResult carved = carve_blocks(result.canonical, ordered, co);
     if (options.merge) {

@@ -9,6 +9,7 @@
 #include "decompose/block_test_shapes.h"
 #include "subfab/core/parallel.h"
 #include "subfab/decompose/finalize_blocks.h"
+#include "subfab/decompose/validate_decomposition.h"
 
 namespace subfab {
 namespace {
@@ -203,6 +204,62 @@ TEST(CarveBlocks, SurfaceTouchingTheBoxFromInsideIsCutThroughTheContact) {
   }
   // One block on each side of the plane x = 2 through the apex.
   EXPECT_EQ(bounding_box(r.blocks[0].mesh).max.x() + bounding_box(r.blocks[1].mesh).max.x(), 5.5);
+}
+
+//! A solid over x in [0, 2], z in [-1, 2], 0 <= y: a thick part (y <= 1.9)
+//! for z <= 0, then for z >= 0 a top y = 1 + |x - g(z)| / 2 with
+//! g(z) = 0.75 + z / 2: a V-shaped valley whose floor, at height y = 1,
+//! runs SLANTED in x-z from (0.75, 1, 0) to (1.75, 1, 2).
+Mesh slanted_valley() {
+  Mesh m;
+  m.vertices = {{0, 0, -1},     {2, 0, -1},   {2, 0, 2},     {0, 0, 2},     {0, 1.9, -1},
+                {2, 1.9, -1},   {2, 1.9, 0},  {0, 1.9, 0},   {0, 1.375, 0}, {0.75, 1, 0},
+                {2, 1.625, 0},  {0, 1.875, 2}, {1.75, 1, 2}, {2, 1.125, 2}};
+  m.faces = {{0, 1, 2},   {0, 2, 3},   {0, 4, 5},   {0, 5, 1},   {4, 7, 6},   {4, 6, 5},  {9, 10, 6},
+             {9, 6, 7},   {9, 7, 8},   {3, 12, 11}, {3, 13, 12}, {3, 2, 13},  {0, 3, 11}, {0, 11, 8},
+             {0, 8, 7},   {0, 7, 4},   {1, 5, 6},   {1, 6, 10},  {1, 10, 13}, {1, 13, 2}, {8, 11, 12},
+             {8, 12, 9},  {9, 12, 13}, {9, 13, 10}};
+  return m;
+}
+
+TEST(CarveBlocks, SlantedContactIsSeparatedByMovingTheBoxFaceOffIt) {
+  // Regression (couplingdown, boxes 62 and 69 at default settings): the top
+  // face y = 1 of an earlier box holds the floor of a valley of the surface
+  // along a segment slanted in x-z. The later box's region (y >= 1, z <= 0.9)
+  // meets the solid in two wedges that touch along that segment and are
+  // joined to the thick part below z = 0: ONE piece touching itself. The
+  // contact ends at z = 0.9 at x = 1.2 + 1e-17 (not a double) and lies in
+  // the earlier box's face, so no axis-aligned plane can cut it apart; the
+  // block touched itself and finalize_blocks() refused it ("it
+  // self-intersects"). Now the earlier box's top face is moved off the
+  // contact (the box grows by 1e-6 of the diagonal and stays exactly
+  // valid), which leaves the wedges apart.
+  const Mesh solid = slanted_valley();
+  const SolidReport report = check_closed_solid(solid);
+  ASSERT_EQ(report.num_boundary_edges + report.num_non_manifold_edges, 0u);
+  ASSERT_GT(report.volume, 0.0);
+  const std::vector<HeightBox> boxes = {make_height_box({0, 0, -1}, {2, 1, 2}, Axis::PosY),
+                                        make_height_box({0, 0, -1}, {2, 2, 0.9}, Axis::PosY)};
+  const CarveResult r = carve_blocks(solid, boxes);
+  EXPECT_EQ(r.num_unresolved_pinches, 0u);
+  EXPECT_EQ(r.num_moved_faces, 1u);
+  ASSERT_EQ(r.blocks.size(), 2u);
+  // solid ∩ (B_0 ∪ B_1): all of it for z <= 0.9 (the section area for z >= 0
+  // is quadratic in z: Simpson is exact), the part below y = 1 + delta beyond
+  // (up to 2.2 delta^2).
+  auto area = [](double z) {
+    const double g = 0.75 + 0.5 * z;
+    return 2.0 + (g * g + (2.0 - g) * (2.0 - g)) / 4.0;
+  };
+  const double delta = 1e-6 * bounding_box(solid).diagonal();
+  const double expected = 3.8 + 0.9 / 6.0 * (area(0.0) + 4.0 * area(0.45) + area(0.9)) + 2.2 * (1.0 + delta);
+  EXPECT_NEAR(total_volume(r), expected, 1e-9);
+  for (const Block& b : r.blocks) {
+    EXPECT_TRUE(is_closed_oriented(b.mesh));
+    EXPECT_EQ(block_defect(b.mesh, Vec3::UnitY(), 4.1), "") << "block from box " << b.source_box;
+  }
+  // The earlier box took the solid up to y = 1 + delta.
+  EXPECT_NEAR(bounding_box(r.blocks[0].mesh).max.y(), 1.0 + delta, 1e-15);
 }
 
 TEST(CarveBlocks, SameResultWhateverTheThreadCount) {

@@ -19,10 +19,16 @@
 //!       region from inside: zero thickness), cut the region by an
 //!       axis-aligned plane through each contact and carve each part again
 //!     split P into connected pieces, keep those touching the input surface
+//!   for a contact no such plane separates (e.g. a segment slanted in the
+//!     face), in box order: move the region face holding it (of the box or
+//!     of an earlier box) off it by contact_move x diagonal, outward when the
+//!     box stays exactly valid, else inward when every triangle stays held
+//!     by some box; carve the changed regions again (max_contact_rounds)
 //!   round every kept piece to doubles, in box order.
 #pragma once
 
 #include <cstddef>
+#include <limits>
 #include <vector>
 
 #include "subfab/core/progress.h"
@@ -41,7 +47,16 @@ struct Block {
 
 //! Options of carve_blocks().
 struct CarveOptions {
-  Progress* progress = nullptr;  // stage progress and warnings (nullptr: silent)
+  double contact_move = 1e-6;     // first distance a box face is moved off a contact no axis-aligned
+                                  // cut separates, as a fraction of the solid's bounding-box diagonal
+                                  // (x10 each time the same face is moved again, at most 3 times); > 0
+  int max_contact_rounds = 4;     // rounds of such moves, each followed by carving the changed
+                                  // regions again (0: never move a face); >= 0
+  double max_height = std::numeric_limits<double>::infinity();  // a moved box stays within this
+                                  // extent along its axis (model units, see box_fits_limits)
+  Vec3 machine_size = Vec3::Constant(std::numeric_limits<double>::infinity());  // and fits this work
+                                  // volume X, Y, Z (model units, Z along the axis)
+  Progress* progress = nullptr;   // stage progress and warnings (nullptr: silent)
 };
 
 //! What carve_blocks() produced and what it had to do.
@@ -52,7 +67,8 @@ struct CarveResult {
   std::size_t num_pinched_regions = 0;   // boxes whose region the surface touches from inside (zero
                                          // thickness at a point or edge), cut through the contact
   std::size_t num_pinch_cuts = 0;        // planes cut through such contacts, summed over boxes
-  std::size_t num_unresolved_pinches = 0;  // contacts no axis-aligned cut through them separated
+  std::size_t num_moved_faces = 0;       // box faces moved off contacts no axis-aligned cut separated
+  std::size_t num_unresolved_pinches = 0;  // contacts neither a cut nor a face move separated
                                            // (the block there touches itself; finalize rejects it)
   std::size_t num_degenerate_faces = 0;  // faces that became zero-area when rounded to doubles
   std::size_t num_flipped_faces = 0;     // faces whose normal flipped when rounded to doubles
