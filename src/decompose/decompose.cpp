@@ -198,41 +198,19 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
 
   // 4. minimal cover (4.3.2, ILP with CBC), 5. snap and shrink (4.3.4) and
   //    resolve overlaps (4.3.3: conflict graph, cycle splits, carve order),
-  //    for up to four covers: one minimising blocks (each box costs its
-  //    connected surface pieces, box_pieces.h) and one minimising boxes (the
-  //    thesis), each from the boxes grown until every face was covered (the
-  //    thesis's seeding) and from all the boxes (with the extra seeds of
-  //    GrowOptions::min_boxes_per_face: smaller covers). Covers of about the
-  //    same size can need very different numbers of cycle splits, so the
-  //    carve order whose boxes add up to fewer pieces is kept (see below
-  //    for the covers of all boxes; a cover already tried is skipped; the
-  //    covers of all boxes are tried only when the first ILP was small).
-  //    Snap and resolve are timed as "resolve".
+  //    for two covers: one minimising blocks (each box costs its connected
+  //    surface pieces, box_pieces.h) and one minimising boxes (the thesis).
+  //    Covers of the same size can need very different numbers of cycle
+  //    splits, so the carve order whose boxes add up to fewer pieces is kept
+  //    (ties: the first). Snap and resolve are timed as "resolve".
   std::vector<HeightBox> ordered;
   {
     const detail::SolidIndex piece_index(result.canonical);
     const std::vector<int> neighbours = detail::face_neighbours(result.canonical);
-    std::size_t best_boxes = std::numeric_limits<std::size_t>::max();
+    const bool one_piece_each = std::all_of(grown.num_pieces.begin(), grown.num_pieces.end(), [](int p) { return p == 1; });
     std::size_t best_pieces = std::numeric_limits<std::size_t>::max();
-    struct Trial {
-      std::size_t num_candidates;  // boxes [0, this) of `grown` are the candidates
-      bool by_pieces;              // costs: pieces per box (else 1 per box)
-    };
-    std::vector<Trial> trials;
-    for (const std::size_t n : {grown.num_covering_boxes, grown.boxes.size()}) {
-      if (!trials.empty() && trials.back().num_candidates == n) break;  // the same candidates again
-      const auto end = grown.num_pieces.begin() + static_cast<std::ptrdiff_t>(n);
-      trials.push_back({n, true});
-      if (!std::all_of(grown.num_pieces.begin(), end, [](int p) { return p == 1; }))
-        trials.push_back({n, false});  // else the same cover again
-    }
-    std::vector<std::vector<int>> tried;  // covers resolved so far (box ids)
-    std::size_t first_ilp_rows = 0;       // rows of the first cover's ILP after reduction
-    for (const Trial& trial : trials) {
-      const std::size_t num_candidates = trial.num_candidates;
-      const bool by_pieces = trial.by_pieces;
-      const bool all_boxes = num_candidates == grown.boxes.size();
-      if (all_boxes && first_ilp_rows > options.max_extra_cover_rows) break;  // too slow to solve again
+    for (const bool by_pieces : {true, false}) {
+      if (!by_pieces && one_piece_each) break;  // the same cover again
       std::vector<HeightBox> selected;
       CoverResult cover;
       {
@@ -241,18 +219,13 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
         CoverOptions o;
         o.time_limit_s = options.cover_time_limit_s;
         o.progress = progress;
-        o.preference.reserve(num_candidates);
-        for (std::size_t b = 0; b < num_candidates; ++b) o.preference.push_back(grown.boxes[b].box.volume());
-        const auto n = static_cast<std::ptrdiff_t>(num_candidates);
-        if (by_pieces) o.cost.assign(grown.num_pieces.begin(), grown.num_pieces.begin() + n);
-        const std::vector<std::vector<int>> candidates(grown.covered.begin(), grown.covered.begin() + n);
-        cover = select_cover(candidates, grown.mesh.num_faces(), o);
-        if (tried.empty()) first_ilp_rows = cover.num_reduced_rows;
+        o.preference.reserve(grown.boxes.size());
+        for (const HeightBox& b : grown.boxes) o.preference.push_back(b.box.volume());
+        if (by_pieces) o.cost = grown.num_pieces;
+        cover = select_cover(grown.covered, grown.mesh.num_faces(), o);
         for (int b : cover.selected) selected.push_back(grown.boxes[static_cast<std::size_t>(b)]);
         result.timings.cover += seconds_since(t);
       }
-      if (std::find(tried.begin(), tried.end(), cover.selected) != tried.end()) continue;
-      tried.push_back(cover.selected);
       const std::size_t num_selected = selected.size();
       {
         StageScope stage(progress, "snap");
@@ -276,20 +249,10 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
       });
       const std::size_t total = std::accumulate(pieces.begin(), pieces.end(), std::size_t{0});
       if (progress)
-        progress->info(std::string("cover by ") + (by_pieces ? "pieces" : "boxes") + " of " +
-                       (all_boxes ? "all boxes" : "the covering boxes") + ": " +
+        progress->info(std::string("cover by ") + (by_pieces ? "pieces" : "boxes") + ": " +
                        std::to_string(num_selected) + " boxes, " + std::to_string(r.ordered.size()) +
                        " in carve order, " + std::to_string(total) + " pieces");
-      // A cover of the covering boxes is kept when it has fewer pieces (the
-      // first on ties); a cover of all boxes only when it is no worse in
-      // both boxes in carve order and pieces, and better in one: each
-      // predictor alone picked the worse cover on some models (pieces:
-      // bimba 103 blocks instead of 92; boxes: airplane 31 instead of 27).
-      const bool better = all_boxes ? (r.ordered.size() <= best_boxes && total <= best_pieces &&
-                                       (r.ordered.size() < best_boxes || total < best_pieces))
-                                    : total < best_pieces;
-      if (better) {
-        best_boxes = r.ordered.size();
+      if (total < best_pieces) {
         best_pieces = total;
         ordered = std::move(r.ordered);
         result.num_selected_boxes = num_selected;

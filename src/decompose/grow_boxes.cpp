@@ -401,7 +401,6 @@ GrowResult grow_boxes(const Mesh& mesh, const GrowOptions& options) {
   result.parent_face.resize(mesh.faces.size());
   std::iota(result.parent_face.begin(), result.parent_face.end(), 0);
   std::vector<Vec3> seed_points;  // centroids of all seeds so far (farthest-point order)
-  std::size_t num_covering_raw = std::numeric_limits<std::size_t>::max();  // boxes before the extra seeding
 
   for (int level = 0;; ++level) {
     const SolidIndex index(result.mesh);
@@ -417,7 +416,6 @@ GrowResult grow_boxes(const Mesh& mesh, const GrowOptions& options) {
       result.covered.clear();  // recomputed on the final mesh
     }
     std::vector<char> covered(static_cast<std::size_t>(nf), 0);
-    std::vector<int> num_boxes(static_cast<std::size_t>(nf), 0);  // boxes covering each face
     std::size_t num_covered = 0;
     auto mark = [&](const std::vector<int>& faces) {
       for (int f : faces)
@@ -429,10 +427,7 @@ GrowResult grow_boxes(const Mesh& mesh, const GrowOptions& options) {
     {
       std::vector<std::vector<int>> lists(result.boxes.size());
       parallel_for(0, result.boxes.size(), [&](std::size_t i) { lists[i] = index.faces_covered(result.boxes[i]); });
-      for (const auto& l : lists) {
-        mark(l);
-        for (int f : l) ++num_boxes[static_cast<std::size_t>(f)];
-      }
+      for (const auto& l : lists) mark(l);
     }
     std::vector<double> dist2(static_cast<std::size_t>(nf), kInf);
     std::vector<Vec3> centres(static_cast<std::size_t>(nf));
@@ -449,37 +444,23 @@ GrowResult grow_boxes(const Mesh& mesh, const GrowOptions& options) {
       for (const Vec3& p : previous) add_seed_point(p);
     }
     std::vector<char> failed(static_cast<std::size_t>(nf), 0);
-    std::vector<char> seeded(static_cast<std::size_t>(nf), 0);
-    // Phase 1 seeds uncovered faces; phase 2 (once every face is covered)
-    // seeds faces held by fewer than `min_boxes_per_face` boxes that were
-    // never seeds themselves, so the cover has alternatives there.
-    int wanted = 1;
     if (progress) progress->update(num_covered, static_cast<std::size_t>(nf));
 
     for (;;) {
-      // a. Seeds: farthest under-covered faces from all previous seeds.
+      // a. Seeds: farthest uncovered faces from all previous seeds.
       std::vector<int> batch;
       for (int k = 0; k < options.batch_size; ++k) {
         int pick = -1;
         for (int f = 0; f < nf; ++f) {
-          const auto fu = static_cast<std::size_t>(f);
-          if (num_boxes[fu] >= wanted || failed[fu] || seeded[fu]) continue;
-          if (pick < 0 || dist2[fu] > dist2[static_cast<std::size_t>(pick)]) pick = f;
+          if (covered[static_cast<std::size_t>(f)] || failed[static_cast<std::size_t>(f)]) continue;
+          if (pick < 0 || dist2[static_cast<std::size_t>(f)] > dist2[static_cast<std::size_t>(pick)]) pick = f;
         }
         if (pick < 0) break;
         batch.push_back(pick);
         failed[static_cast<std::size_t>(pick)] = 2;  // taken (reset below when it grows)
-        seeded[static_cast<std::size_t>(pick)] = 1;
         add_seed_point(centres[static_cast<std::size_t>(pick)]);
       }
-      if (batch.empty()) {
-        if (wanted == 1 && num_covered == static_cast<std::size_t>(nf) && options.min_boxes_per_face > 1) {
-          wanted = options.min_boxes_per_face;
-          num_covering_raw = result.boxes.size();
-          continue;
-        }
-        break;
-      }
+      if (batch.empty()) break;
       ++result.num_rounds;
       result.num_seeds += static_cast<int>(batch.size());
       // b. Grow in parallel (one slot per seed).
@@ -508,7 +489,6 @@ GrowResult grow_boxes(const Mesh& mesh, const GrowOptions& options) {
           result.boxes.push_back(grown[i][k]);
           result.covered.push_back(grown_cover[i][k]);  // valid while the mesh is not refined
           mark(grown_cover[i][k]);
-          for (int f : grown_cover[i][k]) ++num_boxes[static_cast<std::size_t>(f)];
         }
       }
       if (progress) progress->update(num_covered, static_cast<std::size_t>(nf));
@@ -558,7 +538,6 @@ GrowResult grow_boxes(const Mesh& mesh, const GrowOptions& options) {
       });
       if (duplicate) continue;
       unique.push_back(hb);
-      if (i < num_covering_raw) ++result.num_covering_boxes;  // a prefix: kept boxes stay in order
       if (lists_current) unique_covered.push_back(std::move(result.covered[i]));
     }
     result.boxes = std::move(unique);
@@ -575,7 +554,7 @@ GrowResult grow_boxes(const Mesh& mesh, const GrowOptions& options) {
   if (progress) {
     std::ostringstream msg;
     msg << result.boxes.size() << " boxes grown from " << result.num_seeds << " seeds in " << result.num_rounds
-        << " rounds (" << result.num_covering_boxes << " until every face was covered)";
+        << " rounds";
     progress->info(msg.str());
   }
   return result;

@@ -258,44 +258,5 @@ TEST(GrowBoxes, CubeWithOpposedSpikesIsTwoBoxesWithoutSplits) {
   EXPECT_EQ(r.num_splits, 0);
 }
 
-TEST(GrowBoxes, ExtraSeedsWhereFewBoxesHoldAFaceGiveASmallerCover) {
-  // Seeding only until every face is covered (the thesis's pruning, 4.3.2)
-  // leaves faces that one or two boxes hold, which forces those boxes into
-  // the cover. Seeding such faces again (min_boxes_per_face) keeps the
-  // first boxes as they were and adds alternatives: the optimal cover of
-  // all the boxes is smaller.
-  const Mesh mesh = read_mesh(test::data_path("spot.obj"));
-  GrowOptions once;
-  once.min_boxes_per_face = 1;
-  GrowOptions again;
-  again.min_boxes_per_face = 4;
-  const GrowResult a = grow_boxes(mesh, once);
-  const GrowResult b = grow_boxes(mesh, again);
-  expect_valid_cover(b);
-  EXPECT_EQ(a.num_covering_boxes, a.boxes.size());
-  ASSERT_EQ(b.num_covering_boxes, a.boxes.size());
-  ASSERT_GT(b.boxes.size(), a.boxes.size());
-  for (std::size_t i = 0; i < a.boxes.size(); ++i) {
-    EXPECT_EQ(b.boxes[i].box.min, a.boxes[i].box.min) << "box " << i;
-    EXPECT_EQ(b.boxes[i].box.max, a.boxes[i].box.max) << "box " << i;
-    EXPECT_EQ(b.boxes[i].axis, a.boxes[i].axis) << "box " << i;
-  }
-  // Fewer faces are held by fewer than 4 boxes (those left were seeds whose
-  // boxes were already there, or are held by their own seeds' boxes only).
-  std::vector<int> held(b.mesh.faces.size(), 0);
-  for (const auto& faces : b.covered)
-    for (int f : faces) ++held[static_cast<std::size_t>(f)];
-  std::vector<int> held_once(a.mesh.faces.size(), 0);
-  for (const auto& faces : a.covered)
-    for (int f : faces) ++held_once[static_cast<std::size_t>(f)];
-  const auto few = [](const std::vector<int>& h) { return std::count_if(h.begin(), h.end(), [](int n) { return n < 4; }); };
-  EXPECT_LT(few(held), few(held_once));
-  const CoverResult cover_once = select_cover(a.covered, a.mesh.num_faces(), CoverOptions{});
-  const CoverResult cover_again = select_cover(b.covered, b.mesh.num_faces(), CoverOptions{});
-  EXPECT_TRUE(cover_once.optimal);
-  EXPECT_TRUE(cover_again.optimal);
-  EXPECT_LT(cover_again.selected.size(), cover_once.selected.size());
-}
-
 }  // namespace
 }  // namespace subfab

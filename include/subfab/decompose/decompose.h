@@ -32,9 +32,6 @@ struct DecomposeOptions {
   bool orient = true;           // false: --no-orient, keep the input frame
   double grid_factor = 1.0;     // --grid-factor: grid spacing = average edge length x this (> 0)
   double cover_time_limit_s = 60.0;  // CBC time limit, seconds
-  std::size_t max_extra_cover_rows = 1000;  // the covers of all grown boxes (with the extra seeds of
-      // GrowOptions::min_boxes_per_face) are tried only when the first cover's ILP had at most this many
-      // rows after reduction (kitten at 0.05: 1256 rows, and 30-100 s per cover of all its boxes)
   bool merge = true;            // merge touching blocks whose union is a valid block along some direction (4.3.4)
   bool repair = true;           // false: --exact, refuse (AlgorithmError) when the chosen frame has infeasible
                                 // features instead of repairing them (repair_infeasible_features, 4.3.5)

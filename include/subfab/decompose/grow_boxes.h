@@ -23,14 +23,6 @@
 //!         every side to first contact (a maximal box); shrink each side
 //!         back to the covered triangles when that loses no coverage;
 //!      c. coverage of the new boxes (exact rule of SolidIndex);
-//!      d. once every face is covered (where the thesis stops seeding), go on
-//!         seeding, in the same way, the faces held by fewer than
-//!         `min_boxes_per_face` boxes that were not seeds yet: a face that one
-//!         box holds forces that box into the cover, and more boxes there
-//!         give smaller covers (optimal covers by boxes, 1 -> 4: fertility
-//!         115 -> 102 boxes, egea 0.1 79 -> 75, kitten 0.05 53 -> 49).
-//!         The boxes from before this phase come first
-//!         (GrowResult::num_covering_boxes);
 //!   3. faces no axis can cover (a triangle larger than the local feature
 //!      size: a facing-away triangle crosses its own bounding box) are split
 //!      one-to-four (refine_mesh, Section 4.3.5) and seeding goes on, up to
@@ -76,8 +68,6 @@ struct GrowOptions {
                                       GrowStrategy::AcrossFirst};  // boxes grown per seed and axis (non-empty)
   bool all_axes = true;             // grow along every axis the seed faces (false: only the first that works)
   int batch_size = 64;              // seeds grown in parallel per round (results do not depend on threads)
-  int min_boxes_per_face = 4;       // once every face is covered, faces held by fewer boxes than this
-                                    // (and never seeds) are seeded too (1 = stop at coverage, the thesis)
   int max_refinement_levels = 8;    // rounds of local 1-to-4 refinement before giving up
   const std::array<HeightField, 6>* fields = nullptr;  // precomputed fields of `mesh` (nullptr: computed here)
   Progress* progress = nullptr;     // updates (faces covered / total) and warnings; nullptr = silent
@@ -94,9 +84,6 @@ struct GrowResult {
   int num_refined_faces = 0;               // input faces that were split (1-to-4 or, for conformity, 1-to-2)
   int num_rounds = 0;                      // seeding rounds
   int num_seeds = 0;                       // seeds grown (including those that failed)
-  std::size_t num_covering_boxes = 0;      // boxes[0, this) were grown until every face was covered (the
-                                           // thesis's seeding); the rest by the extra seeding of
-                                           // GrowOptions::min_boxes_per_face
 };
 
 //! Grows maximal valid height-field boxes until they cover every triangle
