@@ -23,6 +23,8 @@
 #include "decompose/triangle_meets_closed_box.h"
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
+#include "subfab/decompose/axis.h"
+#include "subfab/decompose/validate_decomposition.h"
 
 namespace subfab {
 namespace {
@@ -781,6 +783,13 @@ class ContactMover {
     return true;
   }
 
+  //! Takes back the last move of face f (the box was `before`); the face
+  //! keeps its move count, so a later try moves it further.
+  void undo(const BoxFace& f, const HeightBox& before) {
+    boxes_[f.box] = before;
+    --num_moves_;
+  }
+
   std::size_t num_moves() const { return num_moves_; }
 
  private:
@@ -933,20 +942,48 @@ CarveResult carve_blocks(const Mesh& solid, const std::vector<HeightBox>& ordere
 
   // Contacts no axis-aligned cut separated: move one region face holding
   // the contact off it, then carve again the boxes whose regions changed.
+  // A move also changes the regions of later boxes (a moved hole face): it
+  // is kept only when every piece of every box carved again is still a
+  // height field along its box's axis (a later box whose base lay in the
+  // moved plane would get faces one step above its base: anchor.off), and
+  // taken back otherwise.
   ContactMover mover(index, boxes, options, bounding_box(solid).diagonal());
+  auto all_height_fields = [&](const std::vector<std::size_t>& ids, const std::vector<BoxPieces>& pieces) {
+    for (std::size_t n = 0; n < ids.size(); ++n)
+      for (const Mesh& m : pieces[n].pieces)
+        if (!is_height_field(m, axis_direction(boxes[ids[n]].axis))) return false;
+    return true;
+  };
   for (int round = 0; round < options.max_contact_rounds; ++round) {
-    std::vector<char> dirty(boxes.size(), 0);
-    for (std::size_t i = 0; i < boxes.size(); ++i)
-      for (const Contact& c : per_box[i].contacts) {
-        if (dirty[i]) break;  // a move this round already changed the region
-        for (const BoxFace& f : c.faces)
-          if (mover.try_move(f, dirty)) break;
+    bool moved_any = false;
+    for (std::size_t i = 0; i < boxes.size(); ++i) {
+      const std::vector<Contact> contacts = per_box[i].contacts;
+      bool recarved_i = false;
+      for (const Contact& c : contacts) {
+        if (recarved_i) break;  // a move this round already changed the region
+        for (const BoxFace& f : c.faces) {
+          const HeightBox before = boxes[f.box];
+          std::vector<char> dirty(boxes.size(), 0);
+          if (!mover.try_move(f, dirty)) continue;
+          std::vector<std::size_t> again;
+          for (std::size_t j = 0; j < boxes.size(); ++j)
+            if (dirty[j]) again.push_back(j);
+          std::vector<BoxPieces> redone(again.size());
+          parallel_for(0, again.size(), [&](std::size_t n) { redone[n] = carve_one(solid, index, boxes, again[n]); });
+          if (!all_height_fields(again, redone)) {
+            mover.undo(f, before);
+            continue;
+          }
+          for (std::size_t n = 0; n < again.size(); ++n) {
+            per_box[again[n]] = std::move(redone[n]);
+            recarved_i = recarved_i || again[n] == i;
+          }
+          moved_any = true;
+          break;
+        }
       }
-    std::vector<std::size_t> again;
-    for (std::size_t i = 0; i < boxes.size(); ++i)
-      if (dirty[i]) again.push_back(i);
-    if (again.empty()) break;
-    parallel_for(0, again.size(), [&](std::size_t n) { per_box[again[n]] = carve_one(solid, index, boxes, again[n]); });
+    }
+    if (!moved_any) break;
   }
 
   CarveResult result;
