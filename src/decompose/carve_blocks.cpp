@@ -737,13 +737,14 @@ BoxPieces carve_one(const Mesh& solid, const detail::SolidIndex& index, const st
 //! faces of earlier boxes (holes); a contact lies in one of them, with the
 //! solid on both sides of that plane (the solid is a 2-manifold: the two
 //! pieces that touch there are joined across the plane). Moving that face
-//! by a small distance across the contact removes it: an own face moved
-//! outward joins the pieces across it, a hole face moved into the region
-//! leaves the pieces apart. Both moves ENLARGE a box, so every triangle a
-//! box held is still held (coverage is kept by construction); the moved box
-//! must stay exactly valid (SolidIndex::box_is_valid) and within the size
-//! limits. Later boxes take the enlarged box as a hole, so the regions stay
-//! disjoint. Deterministic: moves are decided in box order.
+//! by a small distance across the contact removes it. A face is moved
+//! outward (the box grows: every triangle it held is still held) when the
+//! moved box stays exactly valid (SolidIndex::box_is_valid) and within the
+//! size limits, else inward (the box shrinks) when every triangle meeting the
+//! slab it gives up is still held by some box. Later boxes take the moved box
+//! as a hole, so the regions stay disjoint; carve_blocks() takes a move back
+//! when a region carved again is no longer a height field. Deterministic:
+//! moves are decided in box order.
 class ContactMover {
  public:
   ContactMover(const detail::SolidIndex& index, std::vector<HeightBox>& boxes, const CarveOptions& options,

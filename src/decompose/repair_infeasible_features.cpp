@@ -194,6 +194,12 @@ bool split_along_planes(Work& w, int p) {
   return any;
 }
 
+//! Does a face normal turn from `before` to `after` by less than ~75 degrees
+//! (cosine > 1/4; false when either is zero: a degenerate face)?
+bool turns_less_than_75_degrees(const Vec3& before, const Vec3& after) {
+  return after.dot(before) > 0.25 * after.norm() * before.norm();
+}
+
 //! Moves the vertices `ids` to `positions` unless a face around them would
 //! flip or degenerate or a vertex would leave the deviation cap; returns
 //! whether it moved them.
@@ -213,7 +219,7 @@ bool move_vertices(Work& w, const std::vector<std::vector<int>>& star, const std
   bool ok = true;
   for (std::size_t i = 0; i < faces.size() && ok; ++i) {
     const Vec3 n = face_normal_scaled(w.mesh, static_cast<std::size_t>(faces[i]));
-    ok = n.dot(before[i]) > 0.25 * n.norm() * before[i].norm();  // turns by less than ~75 degrees
+    ok = turns_less_than_75_degrees(before[i], n);
   }
   if (!ok)
     for (std::size_t i = 0; i < ids.size(); ++i) w.mesh.vertices[static_cast<std::size_t>(ids[i])] = old[i];
@@ -428,7 +434,7 @@ bool chamfer_vertex(Work& w, const std::vector<int>& star_p, int p, const std::v
   c.reference.faces = c.mesh.faces;
   for (std::size_t k = 0; k < star_p.size(); ++k) {
     const Vec3 nk = face_normal_scaled(c.mesh, static_cast<std::size_t>(star_p[k]));
-    if (!(nk.dot(before[k]) > 0.25 * nk.norm() * before[k].norm())) return false;  // turns by less than ~75 degrees
+    if (!turns_less_than_75_degrees(before[k], nk)) return false;
   }
   for (std::size_t f = c.mesh.faces.size() - 2; f < c.mesh.faces.size(); ++f)
     if (!(face_normal_scaled(c.mesh, f).squaredNorm() > 0)) return false;

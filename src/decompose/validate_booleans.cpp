@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -88,32 +89,25 @@ double nef_volume_of(const ExactMesh& a, const ExactMesh& b, NefBoolean op) {
   return std::max(0.0, nef_volume(result.regularization()));
 }
 
-//! vol(a ∩ b) of two exact closed meshes (consumed). The corefinement first;
-//! when neither the intersection nor a difference is a 2-manifold, Nef
-//! polyhedra.
-double exact_overlap(ExactMesh ea, ExactMesh eb) {
-  const ExactMesh a0 = ea, b0 = eb;
-  ExactMesh a2 = ea, b2 = eb, out;
-  if (guarded([&] {
-        return PMP::corefine_and_compute_intersection(ea, eb, out, kThrowOnSelfIntersection, kThrowOnSelfIntersection);
-      }))
-    return std::max(0.0, mesh_volume(out));
-  // The intersection is not a 2-manifold (the blocks touch along an edge):
-  // measure it as vol(a) - vol(a \ b) instead, or else vol(b) - vol(b \ a).
-  ExactMesh a3 = a2, b3 = b2;
-  const double va = mesh_volume(a2);
-  ExactMesh diff;
-  if (guarded([&] {
-        return PMP::corefine_and_compute_difference(a2, b2, diff, kThrowOnSelfIntersection, kThrowOnSelfIntersection);
-      }))
-    return std::max(0.0, va - mesh_volume(diff));
-  const double vb = mesh_volume(b3);
-  ExactMesh diff_b;
-  if (guarded([&] {
-        return PMP::corefine_and_compute_difference(b3, a3, diff_b, kThrowOnSelfIntersection, kThrowOnSelfIntersection);
-      }))
-    return std::max(0.0, vb - mesh_volume(diff_b));
-  return nef_volume_of(a0, b0, NefBoolean::Intersection);
+//! vol(a ∩ b) of two exact closed meshes. The corefinement first (each try
+//! on fresh copies: it modifies its inputs): a ∩ b; where that is not a
+//! 2-manifold (the blocks touch along an edge), vol(a) - vol(a \ b), else
+//! vol(b) - vol(b \ a); when none is, Nef polyhedra.
+double exact_overlap(const ExactMesh& a, const ExactMesh& b) {
+  const auto corefined = [](const ExactMesh& x, const ExactMesh& y, bool intersection) -> std::optional<double> {
+    ExactMesh x2 = x, y2 = y, out;
+    const bool ok = guarded([&] {
+      return intersection
+                 ? PMP::corefine_and_compute_intersection(x2, y2, out, kThrowOnSelfIntersection, kThrowOnSelfIntersection)
+                 : PMP::corefine_and_compute_difference(x2, y2, out, kThrowOnSelfIntersection, kThrowOnSelfIntersection);
+    });
+    if (!ok) return std::nullopt;
+    return mesh_volume(out);
+  };
+  if (const auto v = corefined(a, b, true)) return std::max(0.0, *v);
+  if (const auto v = corefined(a, b, false)) return std::max(0.0, mesh_volume(a) - *v);
+  if (const auto v = corefined(b, a, false)) return std::max(0.0, mesh_volume(b) - *v);
+  return nef_volume_of(a, b, NefBoolean::Intersection);
 }
 
 //! m ∩ box, exactly; false when CGAL cannot clip it into a 2-manifold.
@@ -154,7 +148,7 @@ double blocks_overlap(const Mesh& a, const Mesh& b) {
     if (clipped) {
       if (ea.number_of_faces() == 0 || eb.number_of_faces() == 0) return 0.0;
       try {
-        return exact_overlap(std::move(ea), std::move(eb));
+        return exact_overlap(ea, eb);
       } catch (const AlgorithmError&) {
         // CGAL found the clipped pieces self-intersecting (a clip plane through
         // a block face can leave slivers it refuses): use the whole blocks.
