@@ -751,41 +751,53 @@ class ContactMover {
                double diagonal)
       : index_(index), boxes_(boxes), options_(options), step_(options.contact_move * diagonal) {}
 
-  //! Moves face f by the current step of that face (x10 each time it is
-  //! moved again): outward when the box stays valid and within the limits,
-  //! else inward when every triangle the box gives up that way is covered by
-  //! the shrunk box or another box. Marks the boxes whose region changes
-  //! (the box, and every later box overlapping the old box or the new one).
-  //! False when both moves are refused.
-  bool try_move(const BoxFace& f, std::vector<char>& dirty) {
-    HeightBox& hb = boxes_[f.box];
-    int& count = num_moved_[f];
-    if (count >= kMaxMovesPerFace) return false;
+  //! Has face f been tried fewer than kMaxMovesPerFace times?
+  bool can_try(const BoxFace& f) const {
+    auto it = num_tried_.find(f);
+    return it == num_tried_.end() || it->second < kMaxMovesPerFace;
+  }
+
+  //! The positions face f may move to, at the current step of that face
+  //! (x10 each time it is tried again): outward first, when the box stays
+  //! valid and within the limits; then inward, when every triangle the box
+  //! gives up that way is covered by the shrunk box or another box. Empty
+  //! when both are refused. carve_blocks() tries them in turn: an outward
+  //! move can break a later box's region where the inward one does not.
+  std::vector<Box3> candidates(const BoxFace& f) {
+    const HeightBox& hb = boxes_[f.box];
+    int& count = num_tried_[f];
     const double step = step_ * std::pow(10.0, count);
+    ++count;
     const double at = f.side < 0 ? hb.box.min[f.k] : hb.box.max[f.k];
-    Box3 moved = hb.box;
-    double& c = f.side < 0 ? moved.min[f.k] : moved.max[f.k];
-    c = at + f.side * step;
-    bool ok = box_fits_limits(moved, hb.axis, options_.max_height, options_.machine_size) &&
-              index_.box_is_valid(moved, hb.axis);
-    if (!ok) {
-      c = at - f.side * step;
-      ok = moved.min[f.k] < moved.max[f.k] && keeps_coverage(f, moved);
+    std::vector<Box3> out;
+    for (int sense : {1, -1}) {
+      Box3 moved = hb.box;
+      double& c = f.side < 0 ? moved.min[f.k] : moved.max[f.k];
+      c = at + sense * f.side * step;
+      const bool ok = sense > 0 ? box_fits_limits(moved, hb.axis, options_.max_height, options_.machine_size) &&
+                                      index_.box_is_valid(moved, hb.axis)
+                                : moved.min[f.k] < moved.max[f.k] && keeps_coverage(f, moved);
+      if (ok) out.push_back(moved);
     }
-    if (!ok) return false;
+    return out;
+  }
+
+  //! Moves box f.box to `moved` (one of candidates(f)) and marks the boxes
+  //! whose region changes: the box, and every later box overlapping the old
+  //! box or the new one.
+  void apply(const BoxFace& f, const Box3& moved, std::vector<char>& dirty) {
+    HeightBox& hb = boxes_[f.box];
     Box3 hull = hb.box;
     hull.min = hull.min.cwiseMin(moved.min);
     hull.max = hull.max.cwiseMax(moved.max);
     hb.box = moved;
-    ++count;
     ++num_moves_;
     for (std::size_t j = f.box; j < boxes_.size(); ++j)
       if (j == f.box || boxes_[j].box.overlaps(hull)) dirty[j] = 1;
-    return true;
   }
 
-  //! Takes back the last move of face f (the box was `before`); the face
-  //! keeps its move count, so a later try moves it further.
+  //! Takes back the last move of face f (the box was `before`); the next
+  //! candidates(f) move it further.
   void undo(const BoxFace& f, const HeightBox& before) {
     boxes_[f.box] = before;
     --num_moves_;
@@ -870,7 +882,7 @@ class ContactMover {
   std::vector<HeightBox>& boxes_;
   const CarveOptions& options_;
   double step_;
-  std::map<BoxFace, int> num_moved_;
+  std::map<BoxFace, int> num_tried_;
   std::size_t num_moves_ = 0;
 };
 
@@ -963,22 +975,32 @@ CarveResult carve_blocks(const Mesh& solid, const std::vector<HeightBox>& ordere
       for (const Contact& c : contacts) {
         if (recarved_i) break;  // a move this round already changed the region
         for (const BoxFace& f : c.faces) {
+          // Outward, then inward, at growing steps, until a move is kept.
           const HeightBox before = boxes[f.box];
-          std::vector<char> dirty(boxes.size(), 0);
-          if (!mover.try_move(f, dirty)) continue;
-          std::vector<std::size_t> again;
-          for (std::size_t j = 0; j < boxes.size(); ++j)
-            if (dirty[j]) again.push_back(j);
-          std::vector<BoxPieces> redone(again.size());
-          parallel_for(0, again.size(), [&](std::size_t n) { redone[n] = carve_one(solid, index, boxes, again[n]); });
-          if (!all_height_fields(again, redone)) {
-            mover.undo(f, before);
-            continue;
+          bool kept = false;
+          while (!kept && mover.can_try(f)) {
+            for (const Box3& moved : mover.candidates(f)) {
+              std::vector<char> dirty(boxes.size(), 0);
+              mover.apply(f, moved, dirty);
+              std::vector<std::size_t> again;
+              for (std::size_t j = 0; j < boxes.size(); ++j)
+                if (dirty[j]) again.push_back(j);
+              std::vector<BoxPieces> redone(again.size());
+              parallel_for(0, again.size(),
+                           [&](std::size_t n) { redone[n] = carve_one(solid, index, boxes, again[n]); });
+              if (!all_height_fields(again, redone)) {
+                mover.undo(f, before);
+                continue;
+              }
+              for (std::size_t n = 0; n < again.size(); ++n) {
+                per_box[again[n]] = std::move(redone[n]);
+                recarved_i = recarved_i || again[n] == i;
+              }
+              kept = true;
+              break;
+            }
           }
-          for (std::size_t n = 0; n < again.size(); ++n) {
-            per_box[again[n]] = std::move(redone[n]);
-            recarved_i = recarved_i || again[n] == i;
-          }
+          if (!kept) continue;
           moved_any = true;
           break;
         }

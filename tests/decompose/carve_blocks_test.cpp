@@ -262,6 +262,39 @@ TEST(CarveBlocks, SlantedContactIsSeparatedByMovingTheBoxFaceOffIt) {
   EXPECT_NEAR(bounding_box(r.blocks[0].mesh).max.y(), 1.0 + delta, 1e-15);
 }
 
+TEST(CarveBlocks, ContactMoveThatWouldNotchALaterBoxMovesTheFaceInwardInstead) {
+  // Regression (anchor.off, boxes 3 and 79 at default settings): the contact
+  // lies in the top face y = 1 of box 0. The outward move (box 0 grows to
+  // y = 1 + delta) is valid for box 0 but cuts a notch delta high out of the
+  // bottom of the later box 2, which abuts that face from above over part of
+  // its length (z in [1, 1.5]): box 2's block would have faces facing -y
+  // delta above its base (not a height field). That move is taken back; it
+  // used to be the only one tried, so the contact stayed and decompose
+  // exited 3 ("it self-intersects"). Now the inward move (box 0 shrinks to
+  // y = 1 - delta; boxes 1 and 3 hold what it gives up) is tried next.
+  const Mesh solid = slanted_valley();
+  const std::vector<HeightBox> boxes = {make_height_box({0, 0, -1}, {2, 1, 1.5}, Axis::PosY),
+                                        make_height_box({0, 0, -1}, {2, 2, 0.9}, Axis::PosY),
+                                        make_height_box({0, 1, 1}, {0.5, 2, 2}, Axis::PosY),
+                                        make_height_box({0, 0, 0.9}, {2, 2, 1.5}, Axis::PosY),
+                                        make_height_box({0, 0, 1.5}, {2, 2, 2}, Axis::PosY)};
+  const CarveResult r = carve_blocks(solid, boxes);
+  EXPECT_EQ(r.num_unresolved_pinches, 0u);
+  EXPECT_EQ(r.num_moved_faces, 1u);
+  // The boxes cover the solid: the blocks are all of it.
+  EXPECT_NEAR(total_volume(r), signed_volume(solid), 1e-9);
+  std::map<int, double> top_of_box;
+  for (const Block& b : r.blocks) {
+    EXPECT_TRUE(is_closed_oriented(b.mesh));
+    EXPECT_EQ(block_defect(b.mesh, Vec3::UnitY(), 4.1), "") << "block from box " << b.source_box;
+    top_of_box[b.source_box] = std::max(top_of_box[b.source_box], bounding_box(b.mesh).max.y());
+  }
+  ASSERT_EQ(top_of_box.size(), 5u);
+  // Box 0 gave up the slab under the contact.
+  const double delta = 1e-6 * bounding_box(solid).diagonal();
+  EXPECT_NEAR(top_of_box[0], 1.0 - delta, 1e-15);
+}
+
 TEST(CarveBlocks, SameResultWhateverTheThreadCount) {
   Mesh wedge = box_solid({0, 0, 0}, {1, 1, 1});
   for (Vec3& v : wedge.vertices)
