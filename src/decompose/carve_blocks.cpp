@@ -558,24 +558,60 @@ bool add_pinch_cuts(const std::vector<ExactPoint>& pinches, const Box3& box, con
   return added;
 }
 
+//! The connected components of `mesh`, each its own mesh.
+std::vector<ExactMesh> split_components(const ExactMesh& mesh) {
+  std::vector<ExactMesh> out;
+  PMP::split_connected_components(mesh, out);
+  return out;
+}
+
+//! How carve_region() ended.
+enum class RegionStatus {
+  kDone,         // `out` holds the pieces
+  kNotManifold,  // a difference would not be a 2-manifold
+  kPinched,      // a piece touches itself before a hole was subtracted: cut through `pinches` first
+};
+
 //! solid ∩ (box \ ∪ holes) as exact pieces, each box of the grid that
 //! `cuts` make of `box` on its own: clipped, then the holes overlapping it
-//! subtracted. False when a difference would not be a 2-manifold.
-bool carve_region(const Mesh& solid, const detail::SolidIndex& index, const Box3& box,
-                  const std::vector<Box3>& holes, const Cuts& cuts, std::vector<ExactMesh>& out) {
+//! subtracted. CGAL's corefinement requires meshes that do not
+//! self-intersect (CGAL 5.5 segfaulted in corefine_and_compute_difference
+//! on a clipped piece of couplingdown.off that touched itself): a piece
+//! whose components touch each other is split into its components first;
+//! one that touches itself stops the carve (kPinched, with the points).
+RegionStatus carve_region(const Mesh& solid, const detail::SolidIndex& index, const Box3& box,
+                          const std::vector<Box3>& holes, const Cuts& cuts, std::vector<ExactMesh>& out,
+                          std::vector<ExactPoint>& pinches) {
   for (const Box3& cell : region_cells(box, {}, cuts))
-    for (ExactMesh& piece : clip_to_box(solid, index, cell)) {
+    for (ExactMesh& clipped : clip_to_box(solid, index, cell)) {
+      std::vector<ExactMesh> work;
+      work.push_back(std::move(clipped));
       for (const Box3& h : holes) {
-        if (piece.number_of_faces() == 0) break;
         if (!h.overlaps(cell)) continue;
-        ExactMesh cutter = detail::box_mesh(h);
-        ExactMesh result;
-        if (!PMP::corefine_and_compute_difference(piece, cutter, result)) return false;
-        piece = std::move(result);
+        std::vector<ExactMesh> next;
+        for (ExactMesh& piece : work) {
+          if (piece.number_of_faces() == 0) continue;
+          std::vector<ExactMesh> parts;
+          if (detail::has_coincident_vertices(piece)) {
+            pinches = pinch_points(piece);
+            if (!pinches.empty()) return RegionStatus::kPinched;
+            parts = split_components(piece);
+          } else {
+            parts.push_back(std::move(piece));
+          }
+          for (ExactMesh& part : parts) {
+            ExactMesh cutter = detail::box_mesh(h);
+            ExactMesh result;
+            if (!PMP::corefine_and_compute_difference(part, cutter, result)) return RegionStatus::kNotManifold;
+            next.push_back(std::move(result));
+          }
+        }
+        work = std::move(next);
       }
-      out.push_back(std::move(piece));
+      for (ExactMesh& piece : work)
+        if (piece.number_of_faces() > 0) out.push_back(std::move(piece));
     }
-  return true;
+  return RegionStatus::kDone;
 }
 
 //! Splits `mesh` into connected pieces and keeps those touching the input surface.
@@ -664,7 +700,12 @@ void carve_in_arena(const Mesh& solid, const detail::SolidIndex& index, const st
   std::vector<ExactMesh> pieces;
   for (int round = 0;; ++round) {
     pieces.clear();
-    out.split_region = !carve_region(solid, index, box, holes, cuts, pieces);
+    std::vector<ExactPoint> pinched;
+    const RegionStatus status = carve_region(solid, index, box, holes, cuts, pieces, pinched);
+    if (status == RegionStatus::kPinched && round < kMaxPinchRounds &&
+        add_pinch_cuts(pinched, box, holes, cuts, out.num_pinch_cuts))
+      continue;  // cut through the contact before subtracting the holes
+    out.split_region = status != RegionStatus::kDone;
     if (out.split_region) {
       // A difference would not be a 2-manifold: cut the region into disjoint
       // boxes and clip each one (clip_to_box splits non-manifold results).

@@ -3,6 +3,7 @@
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -100,6 +101,16 @@ std::size_t count_degenerate_faces(const Mesh& mesh) {
     if (CGAL::collinear(P(a.x(), a.y(), a.z()), P(b.x(), b.y(), b.z()), P(c.x(), c.y(), c.z()))) ++n;
   }
   return n;
+}
+
+bool has_coincident_vertices(const ExactMesh& mesh) {
+  std::vector<ExactPoint> points;
+  points.reserve(mesh.number_of_vertices());
+  for (auto v : mesh.vertices())
+    if (!mesh.is_isolated(v)) points.push_back(mesh.point(v));
+  auto less = [](const ExactPoint& p, const ExactPoint& q) { return CGAL::compare_xyz(p, q) == CGAL::SMALLER; };
+  std::sort(points.begin(), points.end(), less);
+  return std::adjacent_find(points.begin(), points.end()) != points.end();
 }
 
 }  // namespace subfab::detail

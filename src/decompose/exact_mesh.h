@@ -41,6 +41,12 @@ Mesh to_double(const ExactMesh& mesh, RoundingReport* report = nullptr);
 //! predicate). CGAL's corefinement must not be given such faces.
 std::size_t count_degenerate_faces(const Mesh& mesh);
 
+//! Do two (non-isolated) vertices of `mesh` lie at the same exact point?
+//! Then the mesh touches itself or two of its components touch: CGAL's
+//! corefinement must not be given it, and as a block it would not be a
+//! 2-manifold once its vertices are merged by position.
+bool has_coincident_vertices(const ExactMesh& mesh);
+
 //! Runs a few tiny exact booleans (clip, difference, union, intersection,
 //! a non-manifold one, connected components, rounding) once per thread, so
 //! that CGAL's lazily created per-thread objects (the shared "zero" of each

@@ -286,6 +286,7 @@ FinalizeResult finalize_blocks(const Mesh& input, const DecomposeResult& result,
       m.vertices.push_back(it != input_vertex.end() ? input.vertices[static_cast<std::size_t>(it->second)]
                                                     : detail::rotate_accurately(back, c));
     }
+    const Mesh rounded = m;
     try {
       out.cleanup = clean_rounded_block(m, out.block.direction, tolerance, options);
       if (m.faces.empty()) {
@@ -295,6 +296,14 @@ FinalizeResult finalize_blocks(const Mesh& input, const DecomposeResult& result,
       out.error = block_defect(m, out.block.direction, diagonal, options);
     } catch (const std::exception& e) {
       out.error = e.what();
+    }
+    // The cleanup's collapses and flips can make a block touch itself
+    // (anchor.off: 18 collapses on one block, then 8 pairs of faces
+    // crossing); the rounded block as it was is kept when it is valid.
+    if (!out.error.empty() && block_defect(rounded, out.block.direction, diagonal, options).empty()) {
+      m = rounded;
+      out.error.clear();
+      out.cleanup = {};
     }
   });
 

@@ -10,6 +10,8 @@
 #include "subfab/core/parallel.h"
 #include "subfab/decompose/finalize_blocks.h"
 #include "subfab/decompose/validate_decomposition.h"
+#include "subfab/mesh/read_mesh.h"
+#include "test_support.h"
 
 namespace subfab {
 namespace {
@@ -293,6 +295,40 @@ TEST(CarveBlocks, ContactMoveThatWouldNotchALaterBoxMovesTheFaceInwardInstead) {
   // Box 0 gave up the slab under the contact.
   const double delta = 1e-6 * bounding_box(solid).diagonal();
   EXPECT_NEAR(top_of_box[0], 1.0 - delta, 1e-15);
+}
+
+TEST(CarveBlocks, PieceTouchingItselfIsCutBeforeTheHolesAreSubtracted) {
+  // Regression (couplingdown.off with the reverted commit 3d12e37, boxes 24
+  // and 123 of its carve order; data/regression/README.md): the solid
+  // clipped to box 1 touches itself at 2 points, and CGAL 5.5's
+  // corefine_and_compute_difference, which requires meshes that do not
+  // self-intersect, segfaulted subtracting box 0 from it (decompose exit
+  // 139). The region is now cut through the contact first.
+  const Mesh solid = read_mesh(test::data_path("regression/couplingdown_canonical.off"));
+  const Box3 hole{Vec3(-0x1.a90e66cb10343p-3, -0x1.22f0e0a84be4p-3, -0x1.9c2cf1d092543p-6),
+                  Vec3(0x1.352220bc382a1p-4, 0x1.22f0e0a84be4p-3, -0x1.1b5f01175734ap-6)};
+  const Box3 box{Vec3(-0x1.cc53cb592f464p-5, -0x1.21cfbb949624ap-2, -0x1.656eefa1e3eafp-3),
+                 Vec3(0x1.e97579ffa05ebp-5, 0x1.21cfbb949624ap-2, 0x1.656eefa1e3eafp-3)};
+  const std::vector<HeightBox> boxes = {make_height_box(hole.min, hole.max, Axis::NegZ),
+                                        make_height_box(box.min, box.max, Axis::NegX)};
+  const CarveResult r = carve_blocks(solid, boxes);
+  EXPECT_GT(r.num_pinch_cuts, 0u);
+  EXPECT_EQ(r.num_unresolved_pinches, 0u);
+  EXPECT_EQ(r.num_split_regions, 0u);
+  for (const Block& b : r.blocks) {
+    EXPECT_TRUE(is_closed_oriented(b.mesh));
+    EXPECT_EQ(block_defect(b.mesh, axis_direction(boxes[static_cast<std::size_t>(b.source_box)].axis), 1.0), "")
+        << "block from box " << b.source_box;
+  }
+  // Inclusion-exclusion: the blocks are the solid in the union of the boxes.
+  auto carved_volume = [&](const Box3& b) {
+    return total_volume(carve_blocks(solid, {make_height_box(b.min, b.max, Axis::PosZ)}));
+  };
+  Box3 common = hole;
+  common.min = common.min.cwiseMax(box.min);
+  common.max = common.max.cwiseMin(box.max);
+  const double expected = carved_volume(hole) + carved_volume(box) - carved_volume(common);
+  EXPECT_NEAR(total_volume(r), expected, 1e-12);
 }
 
 TEST(CarveBlocks, SameResultWhateverTheThreadCount) {

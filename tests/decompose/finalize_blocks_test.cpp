@@ -236,6 +236,35 @@ TEST(FinalizeBlocks, InputVerticesKeepTheirExactCoordinates) {
   EXPECT_GE(found, input.num_vertices() - 1);  // all but (perhaps) the apex, a collapse may move it by an ulp
 }
 
+TEST(FinalizeBlocks, KeepsTheRoundedBlockWhenTheCleanupWouldMakeItTouchItself) {
+  // Regression (anchor.off at default settings, commit 293dca4 plus carve's
+  // cut-before-subtract): the block carved from box 59 and merged
+  // (data/regression/README.md) is valid as rounded, but the cleanup
+  // collapsed 18 short edges and flipped 6 caps, after which 8 pairs of its
+  // faces crossed, and decompose exited 3 ("it self-intersects"). The
+  // rounded block is now kept when the cleanup breaks it and it is valid.
+  const Mesh input = read_mesh(test::data_path("anchor.off"));
+  const Mesh block = read_mesh(test::data_path("regression/anchor_block_059.obj"));
+  const double diagonal = bounding_box(input).diagonal();
+  ASSERT_EQ(block_defect(block, Vec3::UnitZ(), diagonal), "");
+  double scale = diagonal;
+  for (const Vec3& v : input.vertices) scale = std::max(scale, v.cwiseAbs().maxCoeff());
+  Mesh cleaned = block;
+  clean_rounded_block(cleaned, Vec3::UnitZ(), FinalizeOptions{}.relative_tolerance * scale);
+  EXPECT_NE(block_defect(cleaned, Vec3::UnitZ(), diagonal), "")
+      << "the regression case no longer exercises a cleanup that breaks the block";
+  DecomposeResult r;
+  r.rotation = Eigen::Matrix3d::Identity();
+  r.canonical = input;
+  r.num_input_vertices = input.num_vertices();
+  r.blocks = {Block{block, Axis::PosZ, 59}};
+  const FinalizeResult fr = finalize_blocks(input, r);  // threw before
+  ASSERT_EQ(fr.blocks.size(), 1u);
+  EXPECT_EQ(block_defect(fr.blocks[0].mesh, Vec3::UnitZ(), diagonal), "");
+  EXPECT_EQ(fr.blocks[0].mesh.vertices, block.vertices);
+  EXPECT_EQ(fr.blocks[0].mesh.faces, block.faces);
+}
+
 TEST(OverlapVolumeBound, BoundsTheOverlapAndSettlesTouchingBlocks) {
   const Eigen::Matrix3d rotation = Eigen::AngleAxisd(0.8, Vec3(1, 2, 3).normalized()).toRotationMatrix();
   auto rotated_box = [&](const Vec3& lo, const Vec3& hi) {
