@@ -312,7 +312,9 @@ FinalizeResult finalize_blocks(const Mesh& input, const DecomposeResult& result,
     Finished& f = done[i];
     if (!f.error.empty())
       throw AlgorithmError(block_name(i) + " (carved from box " + std::to_string(f.block.source_box) +
-                           ") is not a valid block after rounding to doubles and cleanup: " + f.error);
+                           ") is not a valid block after rounding to doubles and cleanup: " + f.error +
+                           ". The boxes of this run could not be carved into valid blocks there; another grid "
+                           "(--grid-factor 0.8 or 1.25) gives other boxes and may avoid it");
     fr.cleanup.num_collapsed_edges += f.cleanup.num_collapsed_edges;
     fr.cleanup.num_flipped_edges += f.cleanup.num_flipped_edges;
     if (f.dropped) {
