@@ -482,15 +482,15 @@ bool has_fewer_features(const Mesh& old, const Mesh& now) {
   return before > 0 && find_infeasible_features(now, FeasibilityOptions{.only_vertices = region}).size() < before;
 }
 
-//! Tries the local edits for one feature, cheapest first; keeps the first one
-//! after which the exact test finds fewer features (then `features` is that
-//! test's result) and returns whether there was one.
 //! Which local edits fix_feature() tries.
 enum class Edits {
   Basic,            // splits, vertex moves, disc smoothing
   WithRidgeChamfer  // and, last, the ridge chamfer (once refinement no longer helps)
 };
 
+//! Tries the local edits for one feature, cheapest first; keeps the first one
+//! after which the exact test finds fewer features (then `features` is that
+//! test's result) and returns whether there was one.
 bool fix_feature(Work& w, const InfeasibleFeature& feature, FeasibilityResult& features, double cap, Edits edits) {
   const std::size_t before = features.size();
   const auto accept = [&](Work& candidate) {

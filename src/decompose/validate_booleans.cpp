@@ -89,24 +89,28 @@ double nef_volume_of(const ExactMesh& a, const ExactMesh& b, NefBoolean op) {
   return std::max(0.0, nef_volume(result.regularization()));
 }
 
-//! vol(a ∩ b) of two exact closed meshes. The corefinement first (each try
-//! on fresh copies: it modifies its inputs): a ∩ b; where that is not a
-//! 2-manifold (the blocks touch along an edge), vol(a) - vol(a \ b), else
-//! vol(b) - vol(b \ a); when none is, Nef polyhedra.
+//! vol(x ∩ y) (`intersection`) or vol(x \ y) by CGAL's corefinement, run on
+//! copies (it modifies its inputs); nullopt when the result would not be a
+//! 2-manifold.
+std::optional<double> corefined_volume(const ExactMesh& x, const ExactMesh& y, bool intersection) {
+  ExactMesh x2 = x, y2 = y, out;
+  const bool ok = guarded([&] {
+    return intersection
+               ? PMP::corefine_and_compute_intersection(x2, y2, out, kThrowOnSelfIntersection, kThrowOnSelfIntersection)
+               : PMP::corefine_and_compute_difference(x2, y2, out, kThrowOnSelfIntersection, kThrowOnSelfIntersection);
+  });
+  if (!ok) return std::nullopt;
+  return mesh_volume(out);
+}
+
+//! vol(a ∩ b) of two exact closed meshes. The corefinement first: a ∩ b;
+//! where that is not a 2-manifold (the blocks touch along an edge),
+//! vol(a) - vol(a \ b), else vol(b) - vol(b \ a); when none is, Nef
+//! polyhedra.
 double exact_overlap(const ExactMesh& a, const ExactMesh& b) {
-  const auto corefined = [](const ExactMesh& x, const ExactMesh& y, bool intersection) -> std::optional<double> {
-    ExactMesh x2 = x, y2 = y, out;
-    const bool ok = guarded([&] {
-      return intersection
-                 ? PMP::corefine_and_compute_intersection(x2, y2, out, kThrowOnSelfIntersection, kThrowOnSelfIntersection)
-                 : PMP::corefine_and_compute_difference(x2, y2, out, kThrowOnSelfIntersection, kThrowOnSelfIntersection);
-    });
-    if (!ok) return std::nullopt;
-    return mesh_volume(out);
-  };
-  if (const auto v = corefined(a, b, true)) return std::max(0.0, *v);
-  if (const auto v = corefined(a, b, false)) return std::max(0.0, mesh_volume(a) - *v);
-  if (const auto v = corefined(b, a, false)) return std::max(0.0, mesh_volume(b) - *v);
+  if (const auto v = corefined_volume(a, b, true)) return std::max(0.0, *v);
+  if (const auto v = corefined_volume(a, b, false)) return std::max(0.0, mesh_volume(a) - *v);
+  if (const auto v = corefined_volume(b, a, false)) return std::max(0.0, mesh_volume(b) - *v);
   return nef_volume_of(a, b, NefBoolean::Intersection);
 }
 
@@ -168,19 +172,10 @@ double volume_outside(const Mesh& block, const Mesh& solid) {
   if (!boxes_overlap(bounding_box(block), bounding_box(solid))) return signed_volume(block);
   require_boolean_input(block, "the block");
   require_boolean_input(solid, "the input");
-  {
-    ExactMesh eb = detail::to_exact(block), es = detail::to_exact(solid), out;
-    if (guarded([&] {
-          return PMP::corefine_and_compute_difference(eb, es, out, kThrowOnSelfIntersection, kThrowOnSelfIntersection);
-        }))
-      return std::max(0.0, mesh_volume(out));
-  }
-  ExactMesh eb = detail::to_exact(block), es = detail::to_exact(solid), out;
-  if (guarded([&] {
-        return PMP::corefine_and_compute_intersection(eb, es, out, kThrowOnSelfIntersection, kThrowOnSelfIntersection);
-      }))
-    return std::max(0.0, signed_volume(block) - mesh_volume(out));
-  return nef_volume_of(detail::to_exact(block), detail::to_exact(solid), NefBoolean::Difference);
+  const ExactMesh eb = detail::to_exact(block), es = detail::to_exact(solid);
+  if (const auto v = corefined_volume(eb, es, false)) return std::max(0.0, *v);
+  if (const auto v = corefined_volume(eb, es, true)) return std::max(0.0, signed_volume(block) - *v);
+  return nef_volume_of(eb, es, NefBoolean::Difference);
 }
 
 CoverageReport surface_coverage(const Mesh& input, const std::vector<const Mesh*>& blocks,
