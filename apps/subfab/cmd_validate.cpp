@@ -18,6 +18,7 @@
 #include "command.h"
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
+#include "subfab/decompose/axis.h"
 #include "subfab/decompose/validate_decomposition.h"
 #include "subfab/mesh/read_mesh.h"
 
@@ -30,6 +31,7 @@ using Json = nlohmann::json;
 struct ValidateArgs {
   std::string mesh;
   std::string outdir;
+  std::optional<double> max_overhang;  // --max-overhang: overrides the recorded allowance
   CommonOptions common;
 };
 
@@ -47,7 +49,7 @@ struct RecordedRepair {
 
 //! Reads decomposition.json and the block files it lists.
 std::vector<ValidationBlock> read_decomposition(const fs::path& outdir, ValidationLimits& limits,
-                                                std::optional<RecordedRepair>& repair) {
+                                                std::optional<RecordedRepair>& repair, double& max_overhang_deg) {
   const fs::path path = outdir / "decomposition.json";
   std::ifstream in(path);
   if (!in) throw IoError(path.string() + ": cannot open (is this a folder written by subfab decompose?)");
@@ -66,6 +68,7 @@ std::vector<ValidationBlock> read_decomposition(const fs::path& outdir, Validati
     const Json& p = doc.at("parameters");
     if (p.contains("max_height") && !p["max_height"].is_null()) limits.max_height = p["max_height"].get<double>();
     if (p.contains("machine") && !p["machine"].is_null()) limits.machine = json_vec(p["machine"], "parameters.machine");
+    max_overhang_deg = p.contains("max_overhang_deg") ? p["max_overhang_deg"].get<double>() : 0.0;
     std::vector<ValidationBlock> blocks;
     for (const Json& b : doc.at("blocks")) {
       ValidationBlock vb;
@@ -89,9 +92,26 @@ int run_validate(const ValidateArgs& args) {
   Mesh input = read_mesh(args.mesh);  // IoError / InvalidMeshError: exit 2
   ValidationOptions options;
   std::optional<RecordedRepair> repair;
-  const std::vector<ValidationBlock> blocks = read_decomposition(args.outdir, options.limits, repair);
+  double recorded_overhang = 0.0;
+  const std::vector<ValidationBlock> blocks =
+      read_decomposition(args.outdir, options.limits, repair, recorded_overhang);
+  const double overhang = args.max_overhang ? *args.max_overhang : recorded_overhang;
+  try {
+    options.normal_tolerance = height_field_normal_tolerance(overhang);
+  } catch (const InvalidArgumentError& e) {
+    throw IoError(args.outdir + "/decomposition.json: parameters.max_overhang_deg: " + e.what());
+  }
   ConsoleProgress progress(std::cerr, args.common.quiet, stderr_is_terminal());
   options.progress = &progress;
+  std::string overhang_note;
+  if (overhang > 0) {
+    std::ostringstream note;
+    note << "NOTE: check 2 allows faces leaning up to " << overhang << " deg past vertical ("
+         << (args.max_overhang ? "--max-overhang" : "decomposed with --max-overhang, as recorded")
+         << "): such blocks are not exact height fields; pass --max-overhang 0 to check exactness";
+    overhang_note = note.str();
+    if (!args.common.quiet) progress.warn(overhang_note);
+  }
   std::string repair_note;
   if (repair) {
     // The blocks decompose the repaired input: checks 4 (inside) and 5
@@ -121,6 +141,7 @@ int run_validate(const ValidateArgs& args) {
     j["decomposition"] = args.outdir;
     j["num_blocks"] = blocks.size();
     j["passed"] = report.passed();
+    j["max_overhang_deg"] = overhang;
     if (repair)
       j["repaired_input"] = {{"mesh", (fs::path(args.outdir) / repair->mesh).string()},
                              {"max_deviation", repair->max_deviation},
@@ -141,6 +162,7 @@ int run_validate(const ValidateArgs& args) {
     std::ostringstream out;
     out << "validate " << args.outdir << " against " << args.mesh << " (" << blocks.size() << " blocks)\n";
     if (repair) out << "  " << repair_note << "\n";
+    if (overhang > 0) out << "  " << overhang_note << "\n";
     int k = 1;
     for (const CheckReport& c : report.checks) {
       out << "  " << k++ << ". " << (c.passed ? "PASS" : "FAIL") << "  " << std::left << std::setw(62) << c.name
@@ -169,6 +191,10 @@ const RegisterCommand kRegisterValidate({"validate", 30, [](CLI::App& app) {
       "deviation. Exit 0 if all pass, 3 if one fails, 2 if the files cannot be read.");
   sub->add_option("MESH", args->mesh, "The input mesh that was decomposed")->required();
   sub->add_option("OUTDIR", args->outdir, "Folder written by subfab decompose")->required();
+  sub->add_option("--max-overhang", args->max_overhang,
+                  "Overhang allowance of check 2, degrees past vertical (default: the one decompose recorded "
+                  "in decomposition.json, 0 when none; 0 = exact height fields)")
+      ->check(CLI::Range(0.0, kMaxOverhangAllowanceDeg));
   add_common_options(*sub, args->common);
   return std::pair<CLI::App*, std::function<int()>>{sub, [args] { return run_validate(*args); }};
 }});

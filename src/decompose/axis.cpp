@@ -1,6 +1,12 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "subfab/decompose/axis.h"
 
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "subfab/core/error.h"
+
 namespace subfab {
 
 Vec3 axis_direction(Axis a) {
@@ -33,6 +39,15 @@ Axis closest_axis(const Vec3& n) {
     }
   }
   return best;
+}
+
+double overhang_sine(double max_overhang_deg) {
+  if (!(max_overhang_deg >= 0.0 && max_overhang_deg <= kMaxOverhangAllowanceDeg))
+    throw InvalidArgumentError("--max-overhang must be between 0 and " +
+                               std::to_string(static_cast<int>(kMaxOverhangAllowanceDeg)) +
+                               " degrees (0 = exact height fields), got " + std::to_string(max_overhang_deg));
+  if (max_overhang_deg == 0.0) return 0.0;
+  return std::sin(max_overhang_deg * std::numbers::pi / 180.0);
 }
 
 }  // namespace subfab

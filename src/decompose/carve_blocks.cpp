@@ -985,7 +985,9 @@ CarveResult carve_blocks(const Mesh& solid, const std::vector<HeightBox>& ordere
   Progress* progress = options.progress;
   if (!(options.contact_move > 0) || options.max_contact_rounds < 0)
     throw InvalidArgumentError("carve_blocks: contact_move must be positive and max_contact_rounds >= 0");
-  const detail::SolidIndex index(solid);
+  const detail::SolidIndex index(solid, overhang_sine(options.max_overhang_deg));
+  HeightFieldOptions height_field;
+  height_field.normal_tolerance = height_field_normal_tolerance(options.max_overhang_deg);
   std::vector<HeightBox> boxes = ordered_boxes;
   std::vector<BoxPieces> per_box(boxes.size());
   std::atomic<std::size_t> done{0};
@@ -1005,7 +1007,7 @@ CarveResult carve_blocks(const Mesh& solid, const std::vector<HeightBox>& ordere
   auto all_height_fields = [&](const std::vector<std::size_t>& ids, const std::vector<BoxPieces>& pieces) {
     for (std::size_t n = 0; n < ids.size(); ++n)
       for (const Mesh& m : pieces[n].pieces)
-        if (!is_height_field(m, axis_direction(boxes[ids[n]].axis))) return false;
+        if (!is_height_field(m, axis_direction(boxes[ids[n]].axis), height_field)) return false;
     return true;
   };
   for (int round = 0; round < options.max_contact_rounds; ++round) {

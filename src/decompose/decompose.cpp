@@ -44,6 +44,7 @@ void check_options(const DecomposeOptions& o) {
   if (!(o.cover_time_limit_s > 0)) throw InvalidArgumentError("the cover time limit must be positive");
   if (!(o.max_deviation > 0) || !std::isfinite(o.max_deviation))
     throw InvalidArgumentError("--max-deviation must be a positive fraction of the bounding-box diagonal");
+  overhang_sine(o.max_overhang_deg);  // throws on a value outside [0, 45] degrees
 }
 
 //! The early-failure message: what, where (input coordinates), why, what to do.
@@ -106,6 +107,8 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
   result.num_input_vertices = input.num_vertices();
   const double diagonal = bounding_box(input).diagonal();
   result.max_height = std::min(options.max_height_fraction * diagonal, options.max_height_abs);
+  result.max_overhang_deg = options.max_overhang_deg;
+  const double overhang = options.max_overhang_deg;
   const Vec3 machine = options.machine ? *options.machine : Vec3::Constant(std::numeric_limits<double>::infinity());
 
   // 1. orient (4.3.1)
@@ -173,6 +176,7 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
     if (result.repaired_input)  // the grid keeps the input's spacing (the repair adds small faces)
       o.grid_factor *= average_edge_length(input) / average_edge_length(result.canonical);
     o.max_height = result.max_height;
+    o.max_overhang_deg = overhang;
     o.progress = progress;
     fields = compute_fields(result.canonical, o);
     result.timings.field = seconds_since(t);
@@ -188,6 +192,7 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
     o.max_height = result.max_height;
     o.machine_size = machine;
     o.fields = &fields;
+    o.max_overhang_deg = overhang;
     o.progress = progress;
     grown = grow_boxes(result.canonical, o);
     result.num_grown_boxes = grown.boxes.size();
@@ -205,7 +210,7 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
   //    (ties: the first). Snap and resolve are timed as "resolve".
   std::vector<HeightBox> ordered;
   {
-    const detail::SolidIndex piece_index(result.canonical);
+    const detail::SolidIndex piece_index(result.canonical, overhang_sine(overhang));
     const std::vector<int> neighbours = detail::face_neighbours(result.canonical);
     const bool one_piece_each = std::all_of(grown.num_pieces.begin(), grown.num_pieces.end(), [](int p) { return p == 1; });
     std::size_t best_pieces = std::numeric_limits<std::size_t>::max();
@@ -234,6 +239,7 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
         o.snap_distance = average_edge_length(input) * options.grid_factor;
         o.max_height = result.max_height;
         o.machine_size = machine;
+        o.max_overhang_deg = overhang;
         o.progress = progress;
         selected = snap_and_shrink(result.canonical, std::move(selected), o).boxes;
         result.timings.resolve += seconds_since(t);
@@ -241,6 +247,7 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
       StageScope stage(progress, "resolve");
       const auto t = Clock::now();
       ResolveOptions o;
+      o.max_overhang_deg = overhang;
       o.progress = progress;
       ResolveResult r = resolve_overlaps(result.canonical, std::move(selected), o);
       std::vector<std::size_t> pieces(r.ordered.size());
@@ -271,12 +278,14 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
     CarveOptions co;
     co.max_height = result.max_height;
     co.machine_size = machine;
+    co.max_overhang_deg = overhang;
     co.progress = progress;
     CarveResult carved = carve_blocks(result.canonical, ordered, co);
     if (options.merge) {
       MergeOptions mo;
       mo.max_height = result.max_height;
       mo.machine_size = machine;
+      mo.max_overhang_deg = overhang;
       mo.progress = progress;
       MergeResult merged = merge_blocks(std::move(carved.blocks), mo);
       result.blocks = std::move(merged.blocks);

@@ -24,18 +24,29 @@ std::array<std::int8_t, 3> exact_normal_signs(const Vec3& a, const Vec3& b, cons
           projected_orientation(a, b, c, 0, 1)};
 }
 
-std::vector<std::array<std::int8_t, 3>> exact_normal_signs(const Mesh& mesh) {
+std::array<std::int8_t, 3> facing_signs(const Vec3& a, const Vec3& b, const Vec3& c, double overhang_sine) {
+  std::array<std::int8_t, 3> signs = exact_normal_signs(a, b, c);
+  if (overhang_sine <= 0.0 || (signs[0] == 0 && signs[1] == 0 && signs[2] == 0)) return signs;
+  const Vec3 n = (b - a).cross(c - a).normalized();
+  for (int k = 0; k < 3; ++k)
+    signs[static_cast<std::size_t>(k)] = n[k] < -overhang_sine ? -1 : (n[k] > overhang_sine ? 1 : 0);
+  return signs;
+}
+
+std::vector<std::array<std::int8_t, 3>> facing_signs(const Mesh& mesh, double overhang_sine) {
   std::vector<std::array<std::int8_t, 3>> signs(mesh.num_faces());
   parallel_for(
       0, mesh.num_faces(),
       [&](std::size_t f) {
         const auto& t = mesh.faces[f];
-        signs[f] = exact_normal_signs(mesh.vertices[static_cast<std::size_t>(t[0])],
-                                      mesh.vertices[static_cast<std::size_t>(t[1])],
-                                      mesh.vertices[static_cast<std::size_t>(t[2])]);
+        signs[f] = facing_signs(mesh.vertices[static_cast<std::size_t>(t[0])],
+                                mesh.vertices[static_cast<std::size_t>(t[1])],
+                                mesh.vertices[static_cast<std::size_t>(t[2])], overhang_sine);
       },
       1024);
   return signs;
 }
+
+std::vector<std::array<std::int8_t, 3>> exact_normal_signs(const Mesh& mesh) { return facing_signs(mesh, 0.0); }
 
 }  // namespace subfab::detail

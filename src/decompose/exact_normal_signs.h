@@ -20,4 +20,15 @@ std::array<std::int8_t, 3> exact_normal_signs(const Vec3& a, const Vec3& b, cons
 //! Exact signs for every face of the mesh, in face order (parallel).
 std::vector<std::array<std::int8_t, 3>> exact_normal_signs(const Mesh& mesh);
 
+//! Facing signs under an overhang allowance s = overhang_sine(deg) >= 0:
+//! component k is -1 when the unit normal has n_k < -s, +1 when n_k > s and
+//! 0 otherwise, so the face counts as facing +e_k iff its sign k is >= 0 and
+//! -e_k iff it is <= 0. s = 0: exactly exact_normal_signs(). s > 0 compares
+//! the double unit normal with s (a tolerance the user chose, not a validity
+//! decision); a zero-area face keeps its exact signs.
+std::array<std::int8_t, 3> facing_signs(const Vec3& a, const Vec3& b, const Vec3& c, double overhang_sine);
+
+//! facing_signs() for every face of the mesh, in face order (parallel).
+std::vector<std::array<std::int8_t, 3>> facing_signs(const Mesh& mesh, double overhang_sine);
+
 }  // namespace subfab::detail

@@ -6,10 +6,12 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <numbers>
 
 #include "decompose/rotate_accurately.h"
 #include "subfab/core/error.h"
 #include "subfab/decompose/finalize_blocks.h"
+#include "subfab/decompose/validate_decomposition.h"
 #include "subfab/mesh/write_mesh.h"
 
 namespace subfab {
@@ -66,6 +68,7 @@ Eigen::Matrix3d axis_to_machine(Axis axis) {
 std::vector<ExportedBlock> make_exported_blocks(const Mesh& input, const DecomposeResult& result,
                                                 Progress* progress) {
   FinalizeOptions fo;
+  fo.normal_tolerance = height_field_normal_tolerance(result.max_overhang_deg);
   fo.progress = progress;
   // After a repair (4.3.5) the blocks decompose the repaired input.
   FinalizeResult finished = finalize_blocks(result.repaired_input ? *result.repaired_input : input, result, fo);
@@ -99,6 +102,8 @@ std::vector<ExportedBlock> make_exported_blocks(const Mesh& input, const Decompo
     }
     e.base_offset = lo;
     e.volume = signed_volume(e.mesh);
+    const double worst = check_height_field(e.mesh, e.direction).steepest_cosine;
+    e.max_overhang_deg = worst < 0.0 ? std::asin(std::min(1.0, -worst)) * 180.0 / std::numbers::pi : 0.0;
     out.push_back(std::move(e));
   }
   return out;
@@ -124,9 +129,10 @@ std::string decomposition_json(const Mesh& input, const DecomposeResult& result,
                        {"max_height", limit_json(result.max_height)},
                        {"machine", o.machine ? vec_json(*o.machine) : Json(nullptr)},
                        {"orient", o.orient},
-                       {"grid_factor", o.grid_factor}};
+                       {"grid_factor", o.grid_factor},
+                       {"max_overhang_deg", result.max_overhang_deg}};
   Json list = Json::array();
-  double total = 0.0, smallest = std::numeric_limits<double>::infinity();
+  double total = 0.0, smallest = std::numeric_limits<double>::infinity(), steepest = 0.0;
   for (std::size_t i = 0; i < blocks.size(); ++i) {
     const ExportedBlock& b = blocks[i];
     Json m = Json::array();
@@ -141,15 +147,18 @@ std::string decomposition_json(const Mesh& input, const DecomposeResult& result,
                     {"base_offset", b.base_offset},
                     {"height", b.height},
                     {"volume", b.volume},
+                    {"max_overhang_deg", b.max_overhang_deg},
                     {"bbox", {{"min", vec_json(b.bbox.min)}, {"max", vec_json(b.bbox.max)}}},
                     {"machine_transform", m}});
     total += b.volume;
     smallest = std::min(smallest, b.volume);
+    steepest = std::max(steepest, b.max_overhang_deg);
   }
   doc["blocks"] = list;
   doc["summary"] = {{"num_blocks", blocks.size()},
                     {"material_volume_fraction", input_volume > 0 ? total / input_volume : 0.0},
-                    {"min_block_volume_fraction", blocks.empty() || input_volume <= 0 ? 0.0 : smallest / input_volume}};
+                    {"min_block_volume_fraction", blocks.empty() || input_volume <= 0 ? 0.0 : smallest / input_volume},
+                    {"max_overhang_deg", steepest}};
   auto ms = [](double s) { return std::round(s * 1000.0) / 1000.0; };
   const DecomposeTimings& t = result.timings;
   doc["timings_s"] = {{"orient", ms(t.orient)}, {"field", ms(t.field)},     {"grow", ms(t.grow)},

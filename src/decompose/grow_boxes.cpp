@@ -391,9 +391,12 @@ GrowResult grow_boxes(const Mesh& mesh, const GrowOptions& options) {
   if (mesh.empty()) throw InvalidMeshError("grow_boxes: the mesh has no faces");
   std::array<HeightField, 6> own_fields;
   if (!options.fields)
-    own_fields = compute_fields(mesh, FieldOptions{.grid_factor = options.grid_factor, .progress = nullptr});
+    own_fields = compute_fields(mesh, FieldOptions{.grid_factor = options.grid_factor,
+                                                   .max_overhang_deg = options.max_overhang_deg,
+                                                   .progress = nullptr});
   const std::array<HeightField, 6>& fields = options.fields ? *options.fields : own_fields;
   const SizeLimits limits{options.max_height, options.machine_size};
+  const double sine = overhang_sine(options.max_overhang_deg);
   Progress* progress = options.progress;
 
   GrowResult result;
@@ -403,7 +406,7 @@ GrowResult grow_boxes(const Mesh& mesh, const GrowOptions& options) {
   std::vector<Vec3> seed_points;  // centroids of all seeds so far (farthest-point order)
 
   for (int level = 0;; ++level) {
-    const SolidIndex index(result.mesh);
+    const SolidIndex index(result.mesh, sine);
     const Grower grower(index, fields, limits, true);
     const int nf = index.num_faces();
     // Boxes from before a refinement stay valid (same surface); re-check
@@ -541,7 +544,7 @@ GrowResult grow_boxes(const Mesh& mesh, const GrowOptions& options) {
       if (lists_current) unique_covered.push_back(std::move(result.covered[i]));
     }
     result.boxes = std::move(unique);
-    const SolidIndex index(result.mesh);
+    const SolidIndex index(result.mesh, sine);
     if (lists_current) {
       result.covered = std::move(unique_covered);
     } else {

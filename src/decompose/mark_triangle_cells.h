@@ -15,7 +15,8 @@
 namespace subfab::detail {
 
 //! Flag bits of a cell, for dimension c = 0, 1, 2: the cell meets a triangle
-//! whose exact normal component n_c is negative / positive / zero.
+//! whose exact normal component n_c is negative / positive / zero (under an
+//! overhang allowance s: its facing_signs() component).
 constexpr std::uint16_t cell_flag_negative(int c) { return static_cast<std::uint16_t>(1u << (3 * c)); }
 constexpr std::uint16_t cell_flag_positive(int c) { return static_cast<std::uint16_t>(1u << (3 * c + 1)); }
 constexpr std::uint16_t cell_flag_zero(int c) { return static_cast<std::uint16_t>(1u << (3 * c + 2)); }
@@ -32,6 +33,7 @@ inline std::size_t cell_index(const GridGeometry& grid, int i, int j, int k) {
 //! Per cell, the OR of the flags of every triangle meeting the closed cell
 //! (exact triangle / box test, CGAL Epick). Parallel over triangles; the OR is
 //! order independent, so the result does not depend on the thread count.
-std::vector<std::uint16_t> mark_triangle_cells(const Mesh& mesh, const GridGeometry& grid);
+//! \param overhang_sine allowance s >= 0 of the facing signs (0: exact)
+std::vector<std::uint16_t> mark_triangle_cells(const Mesh& mesh, const GridGeometry& grid, double overhang_sine = 0.0);
 
 }  // namespace subfab::detail

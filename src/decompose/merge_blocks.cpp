@@ -5,6 +5,7 @@
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <map>
 #include <optional>
@@ -28,8 +29,9 @@ bool boxes_touch(const BoundingBox& a, const BoundingBox& b) {
   return (a.min.array() <= b.max.array()).all() && (b.min.array() <= a.max.array()).all();
 }
 
-//! Exact height-field test of a closed exact mesh along an axis.
-bool exact_height_field(const ExactMesh& m, Axis axis) {
+//! Exact height-field test of a closed exact mesh along an axis; under an
+//! overhang allowance s > 0 a face with unit n.d >= -s also passes.
+bool exact_height_field(const ExactMesh& m, Axis axis, double sine) {
   const int k = axis_dimension(axis);
   const int s = axis_sign(axis);
   std::optional<detail::ExactKernel::FT> base;
@@ -45,6 +47,8 @@ bool exact_height_field(const ExactMesh& m, Axis axis) {
     const auto n = CGAL::cross_product(b - a, c - a);
     const auto nd = s > 0 ? n[k] : -n[k];
     if (CGAL::sign(nd) != CGAL::NEGATIVE) continue;
+    if (sine > 0.0 && CGAL::to_double(nd) >= -sine * std::sqrt(CGAL::to_double(n.squared_length())))
+      continue;
     for (const ExactPoint* p : {&a, &b, &c})
       if ((s > 0 ? (*p)[k] : -(*p)[k]) != *base) return false;
   }
@@ -130,7 +134,9 @@ std::optional<Union> try_union(const Block& a, const Block& b, const std::vector
       const auto np = CGAL::parameters::throw_on_self_intersection(true);
       if (PMP::corefine_and_compute_union(ea, eb, u, np, np) && u.number_of_faces() > 0) {
         auto fcc = u.add_property_map<ExactMesh::Face_index, std::size_t>("f:cc", 0).first;
-        const auto axis = std::find_if(axes.begin(), axes.end(), [&](Axis x) { return exact_height_field(u, x); });
+        const double sine = overhang_sine(o.max_overhang_deg);
+        const auto axis =
+            std::find_if(axes.begin(), axes.end(), [&](Axis x) { return exact_height_field(u, x, sine); });
         if (axis != axes.end() && PMP::connected_components(u, fcc) == 1) {
           detail::SuspendArena heap;
           detail::RoundingReport rounding;
@@ -148,7 +154,8 @@ std::optional<Union> try_union(const Block& a, const Block& b, const std::vector
     const BoundingBox box = bounding_box(out->mesh);
     double scale = box.diagonal();
     for (const Vec3& v : out->mesh.vertices) scale = std::max(scale, v.cwiseAbs().maxCoeff());
-    const FinalizeOptions fo;
+    FinalizeOptions fo;
+    fo.normal_tolerance = height_field_normal_tolerance(o.max_overhang_deg);
     try {
       clean_rounded_block(out->mesh, direction, fo.relative_tolerance * scale, fo);
     } catch (const std::exception&) {
@@ -157,7 +164,9 @@ std::optional<Union> try_union(const Block& a, const Block& b, const std::vector
     if (!block_defect(out->mesh, direction, box.diagonal(), fo).empty()) return std::nullopt;
   }
   // Check the rounded union like the validator will.
-  if (!check_closed_solid(out->mesh).ok() || !is_height_field(out->mesh, direction) ||
+  HeightFieldOptions height_field;
+  height_field.normal_tolerance = height_field_normal_tolerance(o.max_overhang_deg);
+  if (!check_closed_solid(out->mesh).ok() || !is_height_field(out->mesh, direction, height_field) ||
       !within_limits(out->mesh, out->axis, o))
     return std::nullopt;
   return out;

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <numeric>
 
+#include "decompose/exact_normal_signs.h"
 #include "subfab/core/error.h"
 
 namespace subfab::detail {
@@ -273,6 +274,7 @@ struct SolidIndex::Impl {
   Mesh mesh;
   std::vector<Box3> boxes;                      // per face
   std::vector<std::array<std::int8_t, 3>> normal_signs;  // per face: exact sign of n_x, n_y, n_z
+  std::vector<std::array<std::int8_t, 3>> facing;        // per face: facing_signs() (= normal_signs when exact)
   std::array<std::vector<int>, 6> away;         // per axis: faces with n.d < 0
   std::array<Bvh, 6> away_bvh;                  // per axis, over `away`
   Bvh all_bvh;                                  // all faces
@@ -281,7 +283,7 @@ struct SolidIndex::Impl {
     return mesh.vertices[static_cast<std::size_t>(mesh.faces[static_cast<std::size_t>(face)][static_cast<std::size_t>(corner)])];
   }
   int facing_sign(int face, Axis axis) const {
-    return axis_sign(axis) * normal_signs[static_cast<std::size_t>(face)][static_cast<std::size_t>(axis_dimension(axis))];
+    return axis_sign(axis) * facing[static_cast<std::size_t>(face)][static_cast<std::size_t>(axis_dimension(axis))];
   }
   bool meets(int face, const Box3& box) const {
     return triangle_meets_open_box(vertex(face, 0), vertex(face, 1), vertex(face, 2), box);
@@ -296,7 +298,7 @@ bool overlaps_open(const Box3& node, const Box3& box) {
 }
 }  // namespace
 
-SolidIndex::SolidIndex(const Mesh& mesh) : impl_(std::make_unique<Impl>()) {
+SolidIndex::SolidIndex(const Mesh& mesh, double overhang_sine) : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
   m.mesh = mesh;
   const std::size_t nf = mesh.faces.size();
@@ -316,6 +318,7 @@ SolidIndex::SolidIndex(const Mesh& mesh) : impl_(std::make_unique<Impl>()) {
     for (int k = 0; k < 3; ++k)
       m.normal_signs[f][static_cast<std::size_t>(k)] = static_cast<std::int8_t>(normal_component_sign(a, b, c, k));
   }
+  m.facing = overhang_sine > 0.0 ? facing_signs(mesh, overhang_sine) : m.normal_signs;
   for (Axis axis : kAllAxes) {
     auto& list = m.away[static_cast<std::size_t>(axis_index(axis))];
     for (std::size_t f = 0; f < nf; ++f)

@@ -13,7 +13,11 @@
 //!
 //! Conventions (the tests check them):
 //! - n = (b - a) x (c - a) of face (a, b, c). Face f faces direction d when
-//!   the exact sign of n.d is >= 0, and faces away when it is < 0.
+//!   the exact sign of n.d is >= 0, and faces away when it is < 0. Under an
+//!   overhang allowance s > 0 (--max-overhang, see overhang_sine()) it faces
+//!   d when the unit normal has n.d >= -s (facing_signs(), double unit
+//!   normal against s); everything else stays exact, is_inside and the
+//!   box-plane test of coverage included.
 //! - A box is VALID for axis d iff no face facing away from d meets the OPEN
 //!   interior of the box (touching its boundary is allowed). A box with a
 //!   zero extent has an empty interior and is always valid.
@@ -61,7 +65,8 @@ class SolidIndex {
   //! Builds the index (copies the mesh). O(F log F).
   //! \param mesh closed, oriented, self-intersection-free triangle mesh
   //!        (canonical frame); is_inside is meaningless otherwise.
-  explicit SolidIndex(const Mesh& mesh);
+  //! \param overhang_sine allowance s >= 0 of the facing test (0: exact)
+  explicit SolidIndex(const Mesh& mesh, double overhang_sine = 0.0);
   ~SolidIndex();
   SolidIndex(const SolidIndex&) = delete;
   SolidIndex& operator=(const SolidIndex&) = delete;
@@ -71,9 +76,10 @@ class SolidIndex {
   const Mesh& mesh() const;
   int num_faces() const;
 
-  //! Exact sign (-1, 0, +1) of n.d for face `face` and direction `axis`.
+  //! Sign (-1, 0, +1) of n.d for face `face` and direction `axis` (exact;
+  //! with an overhang allowance s, -1 iff the unit n.d < -s, 0 iff within s).
   int facing_sign(int face, Axis axis) const;
-  //! Faces with n.d < 0 (exact), sorted by id.
+  //! Faces with facing_sign < 0, sorted by id.
   const std::vector<int>& faces_facing_away(Axis axis) const;
   //! Bounding box of a face (exact: min/max of its vertex coordinates).
   const Box3& face_box(int face) const;

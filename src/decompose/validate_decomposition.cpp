@@ -9,12 +9,14 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <numbers>
 #include <string>
 #include <unordered_map>
 #include <utility>
 
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
+#include "subfab/decompose/axis.h"
 
 namespace subfab {
 namespace {
@@ -135,18 +137,22 @@ HeightFieldReport check_height_field(const Mesh& block, const Vec3& direction, c
   for (std::size_t f = 0; f < block.num_faces(); ++f) {
     const Vec3 n = face_unit_normal(block, f);
     const double c = n.dot(direction);
-    if (c >= -options.normal_tolerance) continue;
+    if (c >= 0.0 || (c >= -options.normal_tolerance && c >= r.steepest_cosine)) continue;
     bool on_base = true;
     for (int k = 0; k < 3; ++k)
       if (std::abs(block.vertices[static_cast<std::size_t>(block.faces[f][static_cast<std::size_t>(k)])].dot(direction) -
                    lo) > tol)
         on_base = false;
     if (on_base) continue;
+    r.steepest_cosine = std::min(r.steepest_cosine, c);
+    if (c >= -options.normal_tolerance) continue;
     ++r.num_overhang_faces;
     r.worst_cosine = std::min(r.worst_cosine, c);
   }
   return r;
 }
+
+double height_field_normal_tolerance(double max_overhang_deg) { return 1e-3 + overhang_sine(max_overhang_deg); }
 
 bool is_height_field(const Mesh& block, const Vec3& direction, const HeightFieldOptions& options) {
   return check_height_field(block, direction, options).ok();
@@ -182,7 +188,9 @@ ValidationReport validate_decomposition(const Mesh& input, const std::vector<Val
   report.checks.push_back(solid);
 
   // 2. height field
-  CheckReport height = named_check("height field (overhang cosine < -1e-3 only on the base)");
+  const std::string tolerance =
+      options.normal_tolerance == 1e-3 ? std::string("1e-3") : fmt("%.4g", options.normal_tolerance);
+  CheckReport height = named_check("height field (overhang cosine < -" + tolerance + " only on the base)");
   std::vector<HeightFieldReport> hf(n);
   {
     StageScope stage(progress, "check: height fields");
@@ -192,13 +200,15 @@ ValidationReport validate_decomposition(const Mesh& input, const std::vector<Val
     parallel_for(0, n, [&](std::size_t i) { hf[i] = check_height_field(blocks[i].mesh, blocks[i].direction, hopt); });
     double worst = 0.0;
     for (std::size_t i = 0; i < n; ++i) {
-      worst = std::min(worst, hf[i].worst_cosine);
+      worst = std::min(worst, hf[i].steepest_cosine);
       if (!hf[i].ok())
         add_failure(height, block_name(i) + ": " + std::to_string(hf[i].num_overhang_faces) +
                                 " faces face away from the milling direction off the base (worst cosine " +
                                 fmt("%.4f", hf[i].worst_cosine) + ")");
     }
-    height.summary = "worst off-base cosine " + fmt("%.4g", worst);
+    const double steepest_deg = worst < 0.0 ? std::asin(std::min(1.0, -worst)) * 180.0 / std::numbers::pi : 0.0;
+    height.summary = "worst off-base cosine " + fmt("%.4g", worst) + " (" + fmt("%.2f", steepest_deg) +
+                     " deg past vertical)";
   }
   report.checks.push_back(height);
 

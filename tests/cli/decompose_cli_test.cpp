@@ -5,6 +5,10 @@
 #include <fstream>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
+#include "decompose/block_test_shapes.h"
+#include "subfab/mesh/write_mesh.h"
 #include "test_support.h"
 
 namespace subfab {
@@ -72,12 +76,16 @@ TEST(DecomposeCli, RefusesAnOpenMeshAndBadOptions) {
   auto height = run_subfab("decompose " + quoted(test::data_path("cross.off")) + " -o " + quoted(dir) +
                            " --max-height -3");
   EXPECT_EQ(height.exit_code, 1) << height.output;
+  auto overhang = run_subfab("decompose " + quoted(test::data_path("cross.off")) + " -o " + quoted(dir) +
+                             " --max-overhang 50");
+  EXPECT_EQ(overhang.exit_code, 1) << overhang.output;
+  EXPECT_NE(overhang.output.find("--max-overhang"), std::string::npos) << overhang.output;
   auto no_dir = run_subfab("validate " + quoted(test::data_path("cross.off")) + " " + quoted(dir / "absent"));
   EXPECT_EQ(no_dir.exit_code, 2) << no_dir.output;
   auto help = run_subfab("decompose --help");
   EXPECT_EQ(help.exit_code, 0);
   for (const char* option : {"--max-height", "--max-height-abs", "--machine", "--no-orient", "--grid-factor",
-                             "--exact", "--max-deviation", "--threads", "--json", "--quiet"})
+                             "--exact", "--max-deviation", "--max-overhang", "--threads", "--json", "--quiet"})
     EXPECT_NE(help.output.find(option), std::string::npos) << option;
 }
 
@@ -113,6 +121,37 @@ TEST(DecomposeCli, InfeasibleFeaturesAreRepairedOrRefusedWithExact) {
   EXPECT_NE(tight.output.find("repairing them by local smoothing"), std::string::npos) << tight.output;
   EXPECT_NE(tight.output.find("--max-deviation"), std::string::npos) << tight.output;
   EXPECT_FALSE(fs::exists(dir / "tight" / "decomposition.json"));
+}
+
+TEST(DecomposeCli, MaxOverhangIsRecordedSaidAndValidatedAgainst) {
+  const fs::path dir = test::temp_dir();
+  const fs::path mesh = dir / "barrel.obj";
+  write_mesh(test::barrel_solid(1.0, 1.0, 5.0), mesh);  // lower faces lean 5 deg past vertical
+  auto d = run_subfab("decompose " + quoted(mesh) + " -o " + quoted(dir / "out") +
+                      " --no-orient --max-overhang 10 --json");
+  ASSERT_EQ(d.exit_code, 0) << d.output;
+  const auto summary = nlohmann::json::parse(d.output.substr(d.output.find('{')));
+  EXPECT_EQ(summary["num_blocks"], 1);
+  EXPECT_EQ(summary["max_overhang_allowed_deg"], 10.0);
+  EXPECT_NEAR(summary["max_overhang_deg"].get<double>(), 5.0, 1e-6);
+  EXPECT_NE(d.output.find("OVERHANGS ALLOWED"), std::string::npos) << d.output;
+  const auto doc = nlohmann::json::parse(slurp(dir / "out" / "decomposition.json"));
+  EXPECT_EQ(doc["parameters"]["max_overhang_deg"], 10.0);
+  EXPECT_NEAR(doc["blocks"][0]["max_overhang_deg"].get<double>(), 5.0, 1e-6);
+  // validate takes the recorded allowance and says so; --max-overhang 0 checks exactness.
+  auto v = run_subfab("validate " + quoted(mesh) + " " + quoted(dir / "out"));
+  EXPECT_EQ(v.exit_code, 0) << v.output;
+  EXPECT_NE(v.output.find("allows faces leaning up to 10 deg"), std::string::npos) << v.output;
+  auto strict = run_subfab("validate " + quoted(mesh) + " " + quoted(dir / "out") + " --max-overhang 0");
+  EXPECT_EQ(strict.exit_code, 3) << strict.output;
+  EXPECT_NE(strict.output.find("5.00 deg past vertical"), std::string::npos) << strict.output;
+  // Exact by default: two blocks, nothing said about overhangs.
+  auto e = run_subfab("decompose " + quoted(mesh) + " -o " + quoted(dir / "exact") + " --no-orient");
+  ASSERT_EQ(e.exit_code, 0) << e.output;
+  EXPECT_EQ(e.output.find("OVERHANGS"), std::string::npos) << e.output;
+  EXPECT_TRUE(fs::exists(dir / "exact" / "blocks" / "block_001.obj"));
+  auto exact_check = run_subfab("validate " + quoted(mesh) + " " + quoted(dir / "exact") + " --max-overhang 0");
+  EXPECT_EQ(exact_check.exit_code, 0) << exact_check.output;
 }
 
 TEST(DecomposeCli, ValidateChecksARecordedRepairedInput) {

@@ -3,6 +3,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
+
+#include "subfab/core/error.h"
+
 namespace subfab {
 namespace {
 
@@ -32,6 +37,14 @@ TEST(Axis, ClosestAxisPicksLargestComponent) {
   EXPECT_EQ(closest_axis(Vec3(-0.7, 0.5, 0.5)), Axis::NegX);
   // A tie goes to the first axis in kAllAxes order.
   EXPECT_EQ(closest_axis(Vec3(1, 1, 0).normalized()), Axis::PosX);
+}
+
+TEST(Axis, OverhangSineIsExactlyZeroByDefaultAndRejectsBadAngles) {
+  EXPECT_EQ(overhang_sine(0.0), 0.0);
+  EXPECT_NEAR(overhang_sine(30.0), 0.5, 1e-15);
+  EXPECT_NEAR(overhang_sine(kMaxOverhangAllowanceDeg), std::sqrt(0.5), 1e-15);
+  for (double bad : {-0.5, 45.5, std::nan(""), std::numeric_limits<double>::infinity()})
+    EXPECT_THROW(overhang_sine(bad), InvalidArgumentError) << bad;
 }
 
 }  // namespace

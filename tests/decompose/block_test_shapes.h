@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <vector>
 
 #include "subfab/decompose/export_decomposition.h"
@@ -37,6 +38,27 @@ inline Mesh extrude_polygon(const std::vector<std::array<double, 2>>& polygon,
 inline Mesh box_solid(const Vec3& min, const Vec3& max) {
   Mesh m = extrude_polygon({{min.x(), min.y()}, {max.x(), min.y()}, {max.x(), max.y()}, {min.x(), max.y()}},
                            {{0, 1, 2}, {0, 2, 3}}, min.z(), max.z());
+  return m;
+}
+
+//! A square "barrel": squares of half-width `a` at z = 0 and z = 2h and
+//! a + h tan(`lean_deg`) at z = h, joined by planar trapezoids. The four
+//! lower side faces lean `lean_deg` degrees past vertical (they face down),
+//! the upper ones face up: exactly two height-field blocks (the halves, along
+//! +z and -z), one when faces may lean that far.
+inline Mesh barrel_solid(double a, double h, double lean_deg) {
+  const double w[3] = {a, a + h * std::tan(lean_deg * 3.14159265358979323846 / 180.0), a};
+  Mesh m;
+  for (int r = 0; r < 3; ++r)
+    for (const auto& c : std::array<std::array<double, 2>, 4>{{{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}})
+      m.vertices.emplace_back(c[0] * w[r], c[1] * w[r], r * h);
+  m.faces = {{0, 2, 1}, {0, 3, 2}, {8, 9, 10}, {8, 10, 11}};  // bottom (-z), top (+z)
+  for (int r = 0; r < 2; ++r)
+    for (int i = 0; i < 4; ++i) {
+      const int j = (i + 1) % 4, lo = 4 * r, hi = 4 * (r + 1);
+      m.faces.push_back({lo + i, lo + j, hi + j});
+      m.faces.push_back({lo + i, hi + j, hi + i});
+    }
   return m;
 }
 

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -138,6 +139,41 @@ TEST(Decompose, RejectsBadOptions) {
   o = {};
   o.max_height_fraction = -1;
   EXPECT_THROW(decompose(cube, o), InvalidArgumentError);
+  for (double bad : {-1.0, 46.0, std::nan("")}) {
+    o = {};
+    o.max_overhang_deg = bad;
+    EXPECT_THROW(decompose(cube, o), InvalidArgumentError) << bad;
+  }
+}
+
+TEST(Decompose, BarrelIsTwoExactBlocksOrOneWhenFacesMayLean) {
+  // Lower side faces lean 5 degrees past vertical: exactly, the two halves
+  // (+z and -z); with --max-overhang 10 one block, whose overhang check 2
+  // flags at the default tolerance and accepts at the allowance.
+  const Mesh barrel = test::barrel_solid(1.0, 1.0, 5.0);
+  DecomposeOptions o;
+  o.orient = false;
+  const DecomposeResult exact = decompose(barrel, o);
+  EXPECT_EQ(exact.blocks.size(), 2u);
+  expect_valid(barrel, exact, exact.max_height);
+  for (const ExportedBlock& b : make_exported_blocks(barrel, exact)) EXPECT_LT(b.max_overhang_deg, 0.01);
+
+  o.max_overhang_deg = 10.0;
+  const DecomposeResult leaning = decompose(barrel, o);
+  ASSERT_EQ(leaning.blocks.size(), 1u);
+  EXPECT_EQ(leaning.max_overhang_deg, 10.0);
+  EXPECT_NEAR(signed_volume(leaning.blocks[0].mesh), signed_volume(barrel), 1e-9);
+  const std::vector<ExportedBlock> exported = make_exported_blocks(barrel, leaning);
+  EXPECT_NEAR(exported[0].max_overhang_deg, 5.0, 1e-6);
+  ValidationOptions vo;
+  const std::vector<ValidationBlock> blocks = test::to_validation(exported);
+  EXPECT_FALSE(validate_decomposition(barrel, blocks, vo).checks[1].passed);
+  vo.normal_tolerance = height_field_normal_tolerance(10.0);
+  const ValidationReport report = validate_decomposition(barrel, blocks, vo);
+  for (const CheckReport& c : report.checks) EXPECT_TRUE(c.passed) << c.name << ": " << c.summary;
+
+  o.max_overhang_deg = 4.0;  // less than the lean: two blocks again
+  EXPECT_EQ(decompose(barrel, o).blocks.size(), 2u);
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <random>
 #include <vector>
 
+#include "decompose/block_test_shapes.h"
 #include "decompose/box_shapes.h"
 #include "subfab/mesh/read_mesh.h"
 #include "test_support.h"
@@ -403,6 +404,28 @@ TEST(SolidIndex, FacesFacingAwayUseExactSigns) {
   EXPECT_EQ(index.facing_sign(0, Axis::NegZ), 0);
   EXPECT_TRUE(index.faces_facing_away(Axis::PosZ).empty());
   EXPECT_EQ(index.facing_sign(0, Axis::PosX), -index.facing_sign(0, Axis::NegX));
+}
+
+TEST(SolidIndex, OverhangAllowanceRelaxesOnlyTheFacingTest) {
+  // The barrel's lower side faces lean 5 degrees past vertical: they face
+  // away from +z exactly, and face it under a 10-degree allowance, which
+  // makes the whole bounding box valid for +z; the inside test is unchanged.
+  const Mesh barrel = test::barrel_solid(1.0, 1.0, 5.0);
+  const SolidIndex exact(barrel);
+  const SolidIndex leaning(barrel, overhang_sine(10.0));
+  const SolidIndex too_little(barrel, overhang_sine(4.0));
+  const BoundingBox bb = bounding_box(barrel);
+  const Box3 whole{bb.min, bb.max};
+  EXPECT_EQ(exact.faces_facing_away(Axis::PosZ).size(), 10u);  // 2 bottom + 8 lower side triangles
+  EXPECT_EQ(too_little.faces_facing_away(Axis::PosZ).size(), 10u);
+  EXPECT_EQ(leaning.faces_facing_away(Axis::PosZ).size(), 2u);  // the bottom only
+  EXPECT_FALSE(exact.box_is_valid(whole, Axis::PosZ));
+  EXPECT_FALSE(too_little.box_is_valid(whole, Axis::PosZ));
+  EXPECT_TRUE(leaning.box_is_valid(whole, Axis::PosZ));
+  EXPECT_EQ(leaning.faces_covered(whole, Axis::PosZ).size(), barrel.faces.size());
+  EXPECT_LT(exact.faces_covered(whole, Axis::PosZ).size(), barrel.faces.size());
+  for (const Vec3& p : {Vec3(0, 0, 1), Vec3(1.05, 0, 1), Vec3(1.05, 0, 0.1)})
+    EXPECT_EQ(exact.is_inside(p), leaning.is_inside(p)) << p.transpose();
 }
 
 }  // namespace

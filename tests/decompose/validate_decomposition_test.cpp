@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <map>
 #include <tuple>
 
@@ -82,6 +83,26 @@ TEST(ValidateDecomposition, OverhangFails) {
   // The same L milled from +x is a height field.
   EXPECT_TRUE(is_height_field(l_solid(), Vec3::UnitX()));
   EXPECT_FALSE(is_height_field(l_solid(), -Vec3::UnitX()));
+}
+
+TEST(ValidateDecomposition, OverhangAllowanceAcceptsFacesLeaningLessThanIt) {
+  // The barrel's 8 lower side triangles lean 5 degrees past vertical from +z.
+  const Mesh barrel = test::barrel_solid(1.0, 1.0, 5.0);
+  const HeightFieldReport exact = check_height_field(barrel, Vec3::UnitZ());
+  EXPECT_EQ(exact.num_overhang_faces, 8u);
+  EXPECT_NEAR(exact.steepest_cosine, -std::sin(5.0 * 3.14159265358979323846 / 180.0), 1e-12);
+  EXPECT_NEAR(exact.worst_cosine, exact.steepest_cosine, 1e-15);
+  HeightFieldOptions o;
+  o.normal_tolerance = height_field_normal_tolerance(10.0);
+  const HeightFieldReport leaning = check_height_field(barrel, Vec3::UnitZ(), o);
+  EXPECT_TRUE(leaning.ok());
+  EXPECT_EQ(leaning.worst_cosine, 0.0);
+  EXPECT_EQ(leaning.steepest_cosine, exact.steepest_cosine);  // still reported
+  o.normal_tolerance = height_field_normal_tolerance(4.0);
+  EXPECT_FALSE(is_height_field(barrel, Vec3::UnitZ(), o));
+  EXPECT_EQ(height_field_normal_tolerance(0.0), 1e-3);
+  // A cube has no face off its base facing away.
+  EXPECT_EQ(check_height_field(box_solid({0, 0, 0}, {1, 1, 1}), Vec3::UnitZ()).steepest_cosine, 0.0);
 }
 
 TEST(ValidateDecomposition, GapFails) {

@@ -41,4 +41,16 @@ std::optional<Axis> parse_axis(std::string_view name);
 //! thesis Section 4.3.2); ties go to the first axis in kAllAxes order.
 Axis closest_axis(const Vec3& n);
 
+//! Largest overhang allowance accepted (degrees past vertical); see overhang_sine().
+inline constexpr double kMaxOverhangAllowanceDeg = 45.0;
+
+//! Sine of an overhang allowance (the `--max-overhang` option, default 0). A
+//! face whose unit normal n has n.d >= -overhang_sine(deg) counts as facing
+//! the milling direction d: it may lean up to `deg` degrees past vertical,
+//! which a 3-axis machine cannot cut (it leaves material under it; the
+//! thesis's blocks have such overhangs, up to 42 deg, reference notes).
+//! 0 gives exactly 0: exact height fields, decided with exact predicates.
+//! 	hrow InvalidArgumentError unless 0 <= deg <= kMaxOverhangAllowanceDeg.
+double overhang_sine(double max_overhang_deg);
+
 }  // namespace subfab

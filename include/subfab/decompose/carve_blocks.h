@@ -56,6 +56,8 @@ struct CarveOptions {
                                   // extent along its axis (model units, see box_fits_limits)
   Vec3 machine_size = Vec3::Constant(std::numeric_limits<double>::infinity());  // and fits this work
                                   // volume X, Y, Z (model units, Z along the axis)
+  double max_overhang_deg = 0.0;  // faces may lean this far past vertical and count as facing the axis (degrees,
+                                  // [0, 45], see overhang_sine(); 0 = exact height fields)
   Progress* progress = nullptr;   // stage progress and warnings (nullptr: silent)
 };
 

@@ -119,6 +119,8 @@ struct HeightField {
 struct FieldOptions {
   double grid_factor = 1.0;  // grid spacing = average edge length x grid_factor (> 0)
   double max_height = std::numeric_limits<double>::infinity();  // block height limit, model units (infinite = none)
+  double max_overhang_deg = 0.0;  // faces may lean this far past vertical and count as facing the axis (degrees,
+                                  // [0, 45], see overhang_sine(); 0 = exact height fields)
   Progress* progress = nullptr;  // info lines (grid size); the caller opens the stage (nullptr = silent)
 };
 

@@ -36,6 +36,10 @@ struct DecomposeOptions {
   bool repair = true;           // false: --exact, refuse (AlgorithmError) when the chosen frame has infeasible
                                 // features instead of repairing them (repair_infeasible_features, 4.3.5)
   double max_deviation = 0.005; // --max-deviation: cap on the repair's Hausdorff distance, x bbox diagonal (> 0)
+  double max_overhang_deg = 0.0; // --max-overhang: faces may lean up to this many degrees past vertical off the
+                                 // base ([0, 45]; 0 = exact height fields). A 3-axis machine cannot cut such
+                                 // faces (it leaves material under them); the thesis's blocks have them.
+                                 // The frame search and the thin-feature repair stay exact (conservative).
   Progress* progress = nullptr; // stage progress (nullptr = silent)
 };
 
@@ -57,6 +61,7 @@ struct DecomposeResult {
   std::optional<Mesh> repaired_input;
   RepairReport repair;       // what the repair found and changed (num_features = 0: nothing repaired)
   double max_height = std::numeric_limits<double>::infinity();  // the height limit used (model units)
+  double max_overhang_deg = 0.0;  // the overhang allowance used (degrees; 0 = exact)
   std::vector<Block> blocks; // the blocks, canonical frame
   DecomposeTimings timings;
   // statistics

@@ -48,6 +48,8 @@ struct ExportedBlock {
   double base_offset = 0;   // min of v.direction over the block (model units)
   double height = 0;        // max - min of v.direction (model units)
   double volume = 0;        // model units^3
+  double max_overhang_deg = 0;  // steepest face off the base leaning past vertical (degrees; 0 when none;
+                                // hundredths of a degree from rounding on exact blocks; <= --max-overhang)
   BoundingBox bbox;         // input coordinates
   Eigen::Matrix4d machine_transform = Eigen::Matrix4d::Identity();  // input -> machine coordinates
 };

@@ -69,7 +69,11 @@ struct GrowOptions {
   bool all_axes = true;             // grow along every axis the seed faces (false: only the first that works)
   int batch_size = 64;              // seeds grown in parallel per round (results do not depend on threads)
   int max_refinement_levels = 8;    // rounds of local 1-to-4 refinement before giving up
-  const std::array<HeightField, 6>* fields = nullptr;  // precomputed fields of `mesh` (nullptr: computed here)
+  const std::array<HeightField, 6>* fields = nullptr;  // precomputed fields of `mesh` (nullptr: computed here;
+                                    // given fields must have been computed with the same max_overhang_deg)
+  double max_overhang_deg = 0.0;  // faces may lean this far past vertical and count as facing the axis (degrees,
+                                  // [0, 45], see overhang_sine(); 0 = exact height fields)
+
   Progress* progress = nullptr;     // updates (faces covered / total) and warnings; nullptr = silent
 };
 

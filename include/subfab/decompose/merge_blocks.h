@@ -36,6 +36,9 @@ struct MergeOptions {
   Vec3 machine_size = Vec3::Constant(std::numeric_limits<double>::infinity());  // X, Y, Z work volume, model
       // units: extent along the axis <= Z, the two others fit X x Y in either order
   int max_rounds = 16;           // rounds of pairwise merging
+  double max_overhang_deg = 0.0;  // faces may lean this far past vertical and count as facing the axis (degrees,
+                                  // [0, 45], see overhang_sine(); 0 = exact height fields)
+
   bool any_direction = true;     // the union may take any of the six directions (false: only pairs of
                                  // the same direction, which the union keeps; the thesis's merge)
   Progress* progress = nullptr;  // progress and info (nullptr: silent)

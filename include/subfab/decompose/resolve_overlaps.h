@@ -47,6 +47,9 @@ namespace subfab {
 //! Options of resolve_overlaps().
 struct ResolveOptions {
   int max_splits = 10000;        // cap on cycle-breaking splits (AlgorithmError beyond it)
+  double max_overhang_deg = 0.0;  // faces may lean this far past vertical and count as facing the axis (degrees,
+                                  // [0, 45], see overhang_sine(); 0 = exact height fields)
+
   Progress* progress = nullptr;  // stage reporting (nullptr = silent)
 };
 

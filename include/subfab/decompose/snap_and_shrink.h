@@ -43,6 +43,8 @@ struct SnapShrinkOptions {
                                  // box's axis, model units: a snap never enlarges a box past it
   Vec3 machine_size = Vec3::Constant(std::numeric_limits<double>::infinity());  // work volume
                                  // X, Y, Z in model units (Z along the axis; see box_fits_limits)
+  double max_overhang_deg = 0.0;  // faces may lean this far past vertical and count as facing the axis (degrees,
+                                  // [0, 45], see overhang_sine(); 0 = exact height fields)
   Progress* progress = nullptr;  // stage reporting (nullptr = silent)
 };
 

@@ -59,6 +59,8 @@ struct HeightFieldReport {
   double height = 0.0;               // max - min of v.d (model units)
   std::size_t num_overhang_faces = 0;  // faces facing away from d that are not on the base
   double worst_cosine = 0.0;         // most negative n.d among those faces (0 if none)
+  double steepest_cosine = 0.0;      // most negative n.d among all faces off the base, within the
+                                     // tolerance or not (0 if none): how far the block overhangs
   bool ok() const { return num_overhang_faces == 0; }
 };
 
@@ -66,6 +68,11 @@ struct HeightFieldReport {
 //! comes from +direction; the base faces -direction), thesis Section 4.2.
 HeightFieldReport check_height_field(const Mesh& block, const Vec3& direction,
                                      const HeightFieldOptions& options = {});
+
+//! Check 2's cosine tolerance for blocks made under an overhang allowance of
+//! `max_overhang_deg` degrees (decompose's --max-overhang): 1e-3 (the margin
+//! for the rounding of exact blocks to doubles) + overhang_sine(deg).
+double height_field_normal_tolerance(double max_overhang_deg);
 
 //! True when check_height_field() finds no overhang.
 bool is_height_field(const Mesh& block, const Vec3& direction, const HeightFieldOptions& options = {});
