@@ -148,7 +148,8 @@ def run_one(args, run):
     summary = json.loads(out)
     res["blocks"] = summary.get("num_blocks")
     res["timings_s"] = summary.get("timings_s", {})
-    for key in ("num_grown_boxes", "num_selected_boxes", "num_ordered_boxes", "num_cycle_splits", "num_merges"):
+    for key in ("num_grown_boxes", "num_selected_boxes", "num_ordered_boxes", "num_cycle_splits", "num_merges",
+                "cover_optimal", "max_overhang_deg"):
         if key in summary:
             res[key] = summary[key]
     if args.no_validate:
