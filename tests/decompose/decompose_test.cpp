@@ -176,5 +176,40 @@ TEST(Decompose, BarrelIsTwoExactBlocksOrOneWhenFacesMayLean) {
   EXPECT_EQ(decompose(barrel, o).blocks.size(), 2u);
 }
 
+TEST(Decompose, OverhangAllowanceOnARealModelGivesFewerBlocksValidAtTheAllowance) {
+  // spot.obj: 42 exact blocks (bench/RESULTS.md), 12 at 15 deg.
+  const Mesh input = read_mesh(test::data_path("spot.obj"));
+  DecomposeOptions o;
+  const std::size_t num_exact = decompose(input, o).blocks.size();
+  o.max_overhang_deg = 15.0;
+  const DecomposeResult leaning = decompose(input, o);
+  EXPECT_LT(2 * leaning.blocks.size(), num_exact);
+  const std::vector<ExportedBlock> exported = make_exported_blocks(input, leaning);
+  double steepest = 0.0;
+  for (const ExportedBlock& b : exported) {
+    EXPECT_LE(b.max_overhang_deg, 15.06);  // 1e-3 of cosine margin for the rounding
+    steepest = std::max(steepest, b.max_overhang_deg);
+  }
+  EXPECT_GT(steepest, 5.0);  // the allowance was used
+  const std::vector<ValidationBlock> blocks = test::to_validation(exported);
+  ValidationOptions vo;
+  vo.normal_tolerance = height_field_normal_tolerance(15.0);
+  for (const CheckReport& c : validate_decomposition(input, blocks, vo).checks)
+    EXPECT_TRUE(c.passed) << c.name << ": " << (c.failures.empty() ? c.summary : c.failures[0]);
+  std::size_t num_overhanging = 0;  // check 2 at the default tolerance
+  for (const ExportedBlock& b : exported) num_overhanging += is_height_field(b.mesh, b.direction) ? 0 : 1;
+  EXPECT_GT(num_overhanging, 0u);
+  DecomposeResult one;
+  {
+    ThreadLimit limit(1);
+    one = decompose(input, o);
+  }
+  ASSERT_EQ(one.blocks.size(), leaning.blocks.size());
+  for (std::size_t i = 0; i < one.blocks.size(); ++i) {
+    EXPECT_EQ(one.blocks[i].mesh.vertices, leaning.blocks[i].mesh.vertices) << "block " << i;
+    EXPECT_EQ(one.blocks[i].mesh.faces, leaning.blocks[i].mesh.faces) << "block " << i;
+  }
+}
+
 }  // namespace
 }  // namespace subfab
