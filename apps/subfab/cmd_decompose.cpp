@@ -203,7 +203,7 @@ const RegisterCommand kRegisterDecompose({"decompose", 20, [](CLI::App& app) {
                   "Let block faces lean up to DEG degrees past vertical (default 0: exact height fields). "
                   "A 3-axis machine cannot cut such faces and leaves material under them (at most their "
                   "height x tan(DEG) deep), so use it only when that is acceptable, e.g. for the noise of a "
-                  "scanned model; it gives far fewer blocks. The thesis's blocks lean up to 42 deg.")
+                  "scanned model; it gives far fewer blocks. The thesis's published blocks lean up to 43 deg.")
       ->check(CLI::Range(0.0, kMaxOverhangAllowanceDeg));
   sub->add_option("--grid-factor", args->grid_factor,
                   "Grid spacing = average edge length x G (default 1; smaller is finer and slower)")

@@ -48,7 +48,7 @@ inline constexpr double kMaxOverhangAllowanceDeg = 45.0;
 //! face whose unit normal n has n.d >= -overhang_sine(deg) counts as facing
 //! the milling direction d: it may lean up to `deg` degrees past vertical,
 //! which a 3-axis machine cannot cut (it leaves material under it; the
-//! thesis's blocks have such overhangs, up to 42 deg, reference notes).
+//! thesis's blocks have such overhangs, up to 43 deg, reference notes).
 //! 0 gives exactly 0: exact height fields, decided with exact predicates.
 //! 	hrow InvalidArgumentError unless 0 <= deg <= kMaxOverhangAllowanceDeg.
 double overhang_sine(double max_overhang_deg);
