@@ -6,7 +6,6 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
-#include <numbers>
 
 #include "decompose/rotate_accurately.h"
 #include "subfab/core/error.h"
@@ -102,8 +101,7 @@ std::vector<ExportedBlock> make_exported_blocks(const Mesh& input, const Decompo
     }
     e.base_offset = lo;
     e.volume = signed_volume(e.mesh);
-    const double worst = check_height_field(e.mesh, e.direction).steepest_cosine;
-    e.max_overhang_deg = worst < 0.0 ? std::asin(std::min(1.0, -worst)) * 180.0 / std::numbers::pi : 0.0;
+    e.max_overhang_deg = overhang_angle_deg(check_height_field(e.mesh, e.direction).steepest_cosine);
     out.push_back(std::move(e));
   }
   return out;

@@ -152,6 +152,10 @@ HeightFieldReport check_height_field(const Mesh& block, const Vec3& direction, c
   return r;
 }
 
+double overhang_angle_deg(double cosine) {
+  return cosine < 0.0 ? std::asin(std::min(1.0, -cosine)) * 180.0 / std::numbers::pi : 0.0;
+}
+
 double height_field_normal_tolerance(double max_overhang_deg) { return 1e-3 + overhang_sine(max_overhang_deg); }
 
 bool is_height_field(const Mesh& block, const Vec3& direction, const HeightFieldOptions& options) {
@@ -206,8 +210,7 @@ ValidationReport validate_decomposition(const Mesh& input, const std::vector<Val
                                 " faces face away from the milling direction off the base (worst cosine " +
                                 fmt("%.4f", hf[i].worst_cosine) + ")");
     }
-    const double steepest_deg = worst < 0.0 ? std::asin(std::min(1.0, -worst)) * 180.0 / std::numbers::pi : 0.0;
-    height.summary = "worst off-base cosine " + fmt("%.4g", worst) + " (" + fmt("%.2f", steepest_deg) +
+    height.summary = "worst off-base cosine " + fmt("%.4g", worst) + " (" + fmt("%.2f", overhang_angle_deg(worst)) +
                      " deg past vertical)";
   }
   report.checks.push_back(height);

@@ -25,12 +25,29 @@ std::vector<ValidationBlock> to_validation(const Mesh& input, const DecomposeRes
   return test::to_validation(make_exported_blocks(input, r));
 }
 
-void expect_valid(const Mesh& input, const DecomposeResult& r, double max_height) {
+//! Every check passes, check 2 at the overhang allowance `max_overhang_deg`.
+void expect_valid(const Mesh& input, const DecomposeResult& r, double max_height, double max_overhang_deg = 0.0) {
   ValidationOptions o;
   o.limits.max_height = max_height;
+  o.normal_tolerance = height_field_normal_tolerance(max_overhang_deg);
   const ValidationReport report = validate_decomposition(input, to_validation(input, r), o);
   for (const CheckReport& c : report.checks)
     EXPECT_TRUE(c.passed) << c.name << ": " << (c.failures.empty() ? c.summary : c.failures[0]);
+}
+
+//! decompose(input, o) on one thread gives the blocks of `many` (all threads), bit for bit.
+void expect_same_on_one_thread(const Mesh& input, const DecomposeOptions& o, const DecomposeResult& many) {
+  DecomposeResult one;
+  {
+    ThreadLimit limit(1);
+    one = decompose(input, o);
+  }
+  ASSERT_EQ(one.blocks.size(), many.blocks.size());
+  for (std::size_t i = 0; i < one.blocks.size(); ++i) {
+    EXPECT_EQ(one.blocks[i].mesh.vertices, many.blocks[i].mesh.vertices) << "block " << i;
+    EXPECT_EQ(one.blocks[i].mesh.faces, many.blocks[i].mesh.faces) << "block " << i;
+    EXPECT_EQ(one.blocks[i].axis, many.blocks[i].axis);
+  }
 }
 
 TEST(Decompose, CubeIsOneBlock) {
@@ -106,17 +123,7 @@ TEST_P(DecomposeRealModel, ValidatesAndIsThreadIndependent) {
   DecomposeResult many = decompose(input, o);
   EXPECT_GE(many.blocks.size(), 1u);
   expect_valid(input, many, many.max_height);
-  DecomposeResult one;
-  {
-    ThreadLimit limit(1);
-    one = decompose(input, o);
-  }
-  ASSERT_EQ(one.blocks.size(), many.blocks.size());
-  for (std::size_t i = 0; i < one.blocks.size(); ++i) {
-    EXPECT_EQ(one.blocks[i].mesh.vertices, many.blocks[i].mesh.vertices) << "block " << i;
-    EXPECT_EQ(one.blocks[i].mesh.faces, many.blocks[i].mesh.faces) << "block " << i;
-    EXPECT_EQ(one.blocks[i].axis, many.blocks[i].axis);
-  }
+  expect_same_on_one_thread(input, o, many);
 }
 
 INSTANTIATE_TEST_SUITE_P(SmallModels, DecomposeRealModel,
@@ -165,12 +172,8 @@ TEST(Decompose, BarrelIsTwoExactBlocksOrOneWhenFacesMayLean) {
   EXPECT_NEAR(signed_volume(leaning.blocks[0].mesh), signed_volume(barrel), 1e-9);
   const std::vector<ExportedBlock> exported = make_exported_blocks(barrel, leaning);
   EXPECT_NEAR(exported[0].max_overhang_deg, 5.0, 1e-6);
-  ValidationOptions vo;
-  const std::vector<ValidationBlock> blocks = test::to_validation(exported);
-  EXPECT_FALSE(validate_decomposition(barrel, blocks, vo).checks[1].passed);
-  vo.normal_tolerance = height_field_normal_tolerance(10.0);
-  const ValidationReport report = validate_decomposition(barrel, blocks, vo);
-  for (const CheckReport& c : report.checks) EXPECT_TRUE(c.passed) << c.name << ": " << c.summary;
+  EXPECT_FALSE(validate_decomposition(barrel, test::to_validation(exported), ValidationOptions{}).checks[1].passed);
+  expect_valid(barrel, leaning, leaning.max_height, 10.0);
 
   o.max_overhang_deg = 4.0;  // less than the lean: two blocks again
   EXPECT_EQ(decompose(barrel, o).blocks.size(), 2u);
@@ -191,24 +194,11 @@ TEST(Decompose, OverhangAllowanceOnARealModelGivesFewerBlocksValidAtTheAllowance
     steepest = std::max(steepest, b.max_overhang_deg);
   }
   EXPECT_GT(steepest, 5.0);  // the allowance was used
-  const std::vector<ValidationBlock> blocks = test::to_validation(exported);
-  ValidationOptions vo;
-  vo.normal_tolerance = height_field_normal_tolerance(15.0);
-  for (const CheckReport& c : validate_decomposition(input, blocks, vo).checks)
-    EXPECT_TRUE(c.passed) << c.name << ": " << (c.failures.empty() ? c.summary : c.failures[0]);
+  expect_valid(input, leaning, leaning.max_height, 15.0);
   std::size_t num_overhanging = 0;  // check 2 at the default tolerance
   for (const ExportedBlock& b : exported) num_overhanging += is_height_field(b.mesh, b.direction) ? 0 : 1;
   EXPECT_GT(num_overhanging, 0u);
-  DecomposeResult one;
-  {
-    ThreadLimit limit(1);
-    one = decompose(input, o);
-  }
-  ASSERT_EQ(one.blocks.size(), leaning.blocks.size());
-  for (std::size_t i = 0; i < one.blocks.size(); ++i) {
-    EXPECT_EQ(one.blocks[i].mesh.vertices, leaning.blocks[i].mesh.vertices) << "block " << i;
-    EXPECT_EQ(one.blocks[i].mesh.faces, leaning.blocks[i].mesh.faces) << "block " << i;
-  }
+  expect_same_on_one_thread(input, o, leaning);
 }
 
 }  // namespace

@@ -69,6 +69,10 @@ struct HeightFieldReport {
 HeightFieldReport check_height_field(const Mesh& block, const Vec3& direction,
                                      const HeightFieldOptions& options = {});
 
+//! Degrees past vertical of a face whose unit normal n has n.d = `cosine`
+//! (asin(-cosine); 0 when the face does not face away, cosine >= 0).
+double overhang_angle_deg(double cosine);
+
 //! Check 2's cosine tolerance for blocks made under an overhang allowance of
 //! `max_overhang_deg` degrees (decompose's --max-overhang): 1e-3 (the margin
 //! for the rounding of exact blocks to doubles) + overhang_sine(deg).
