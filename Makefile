@@ -1,8 +1,10 @@
 # subfab: the two commands of the README, and what they need.
-#   make run   set up, build (Release), decompose a bundled example (data/moai.obj,
-#              thesis height 0.225) into out/example and validate the result
-#   make test  set up, build, run the whole test suite (ctest), then the mesh
-#              reader tests again under AddressSanitizer + UBSan
+#   make run   set up, build the `subfab` command only (Release), decompose a
+#              bundled example (data/moai.obj, thesis height 0.225) into
+#              out/example and validate the result
+#   make test  set up, check that module dependencies point down, build
+#              everything, run the whole test suite (ctest), then the CGAL-free
+#              mesh tests again under AddressSanitizer + UBSan
 SHELL := /bin/bash
 BUILD_DIR ?= build
 ASAN_DIR ?= build-asan
@@ -11,7 +13,7 @@ EXAMPLE ?= data/moai.obj
 EXAMPLE_HEIGHT ?= 0.225
 OUT ?= out/example
 
-.PHONY: all setup configure build run test test-fast test-asan bench clean
+.PHONY: all setup configure build build-app run test test-fast test-asan check-layering clean
 
 all: build
 
@@ -24,7 +26,10 @@ configure: setup
 build: configure
 	@cmake --build $(BUILD_DIR) -j $(JOBS)
 
-run: build
+build-app: configure
+	@cmake --build $(BUILD_DIR) -j $(JOBS) --target subfab_app
+
+run: build-app
 	@./$(BUILD_DIR)/subfab decompose $(EXAMPLE) -o $(OUT) --max-height $(EXAMPLE_HEIGHT)
 	@./$(BUILD_DIR)/subfab validate $(EXAMPLE) $(OUT) --quiet
 
@@ -37,7 +42,10 @@ test-asan: setup
 	@ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 		ctest --test-dir $(ASAN_DIR) --output-on-failure -j $(JOBS)
 
-test: test-fast test-asan
+check-layering:
+	@python3 scripts/check_layering.py
+
+test: check-layering test-fast test-asan
 
 clean:
 	rm -rf $(BUILD_DIR) $(ASAN_DIR) out

@@ -6,7 +6,7 @@
 set -euo pipefail
 
 packages=(
-  build-essential cmake make pkg-config ccache
+  build-essential cmake make pkg-config ccache python3
   libcgal-dev libgmp-dev libmpfr-dev
   libeigen3-dev
   libboost-dev libboost-graph-dev

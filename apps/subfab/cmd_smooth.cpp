@@ -13,7 +13,7 @@
 #include "command.h"
 #include "subfab/core/parallel.h"
 #include "subfab/core/progress.h"
-#include "subfab/decompose/smooth_for_decomposition.h"
+#include "subfab/fidelity/smooth_for_decomposition.h"
 #include "subfab/mesh/read_mesh.h"
 #include "subfab/mesh/write_mesh.h"
 

@@ -18,8 +18,8 @@
 #include "command.h"
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
-#include "subfab/decompose/axis.h"
-#include "subfab/decompose/validate_decomposition.h"
+#include "subfab/geometry/axis.h"
+#include "subfab/validate/validate_decomposition.h"
 #include "subfab/mesh/read_mesh.h"
 
 namespace subfab::cli {

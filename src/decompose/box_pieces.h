@@ -17,8 +17,8 @@
 
 #include <vector>
 
-#include "decompose/solid_index.h"
-#include "subfab/decompose/height_box.h"
+#include "geometry/solid_index.h"
+#include "subfab/geometry/height_box.h"
 
 namespace subfab::detail {
 

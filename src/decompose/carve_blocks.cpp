@@ -17,14 +17,14 @@
 #include <string>
 #include <vector>
 
-#include "decompose/deterministic_arena.h"
-#include "decompose/exact_mesh.h"
-#include "decompose/solid_index.h"
-#include "decompose/triangle_meets_closed_box.h"
+#include "geometry/deterministic_arena.h"
+#include "geometry/exact_mesh.h"
+#include "geometry/solid_index.h"
+#include "geometry/triangle_meets_closed_box.h"
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
-#include "subfab/decompose/axis.h"
-#include "subfab/decompose/validate_decomposition.h"
+#include "subfab/geometry/axis.h"
+#include "subfab/validate/validate_decomposition.h"
 
 namespace subfab {
 namespace {

@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "decompose/mark_triangle_cells.h"
-#include "subfab/checks/classify_grid_points.h"
+#include "subfab/geometry/classify_grid_points.h"
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
 

@@ -10,14 +10,14 @@
 
 #include <unordered_map>
 
-#include "decompose/rotate_accurately.h"
+#include "geometry/rotate_accurately.h"
 #include "subfab/checks/require_closed_solid.h"
 #include "decompose/box_pieces.h"
-#include "decompose/solid_index.h"
+#include "geometry/solid_index.h"
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
 #include "subfab/decompose/compute_field.h"
-#include "subfab/decompose/find_infeasible_features.h"
+#include "subfab/fidelity/find_infeasible_features.h"
 #include "subfab/decompose/grow_boxes.h"
 #include "subfab/decompose/merge_blocks.h"
 #include "subfab/decompose/orient_mesh.h"

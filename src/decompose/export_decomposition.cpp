@@ -7,10 +7,10 @@
 #include <cstdio>
 #include <fstream>
 
-#include "decompose/rotate_accurately.h"
+#include "geometry/rotate_accurately.h"
 #include "subfab/core/error.h"
 #include "subfab/decompose/finalize_blocks.h"
-#include "subfab/decompose/validate_decomposition.h"
+#include "subfab/validate/validate_decomposition.h"
 #include "subfab/mesh/write_mesh.h"
 
 namespace subfab {

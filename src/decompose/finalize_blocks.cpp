@@ -15,11 +15,11 @@
 #include <unordered_map>
 #include <vector>
 
-#include "decompose/exact_mesh.h"
-#include "decompose/rotate_accurately.h"
+#include "geometry/exact_mesh.h"
+#include "geometry/rotate_accurately.h"
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
-#include "subfab/decompose/validate_decomposition.h"
+#include "subfab/validate/validate_decomposition.h"
 
 namespace subfab {
 namespace {

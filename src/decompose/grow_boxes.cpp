@@ -10,10 +10,10 @@
 #include <unordered_map>
 
 #include "decompose/box_pieces.h"
-#include "decompose/solid_index.h"
+#include "geometry/solid_index.h"
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
-#include "subfab/decompose/refine_mesh.h"
+#include "subfab/mesh/refine_mesh.h"
 
 namespace subfab {
 namespace {

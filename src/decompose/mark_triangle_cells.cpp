@@ -10,8 +10,8 @@
 #include <atomic>
 #include <cmath>
 
-#include "decompose/exact_normal_signs.h"
-#include "decompose/triangle_meets_closed_box.h"
+#include "geometry/exact_normal_signs.h"
+#include "geometry/triangle_meets_closed_box.h"
 #include "subfab/core/parallel.h"
 
 namespace subfab::detail {

@@ -12,11 +12,11 @@
 #include <string>
 #include <utility>
 
-#include "decompose/deterministic_arena.h"
-#include "decompose/exact_mesh.h"
+#include "geometry/deterministic_arena.h"
+#include "geometry/exact_mesh.h"
 #include "subfab/core/parallel.h"
 #include "subfab/decompose/finalize_blocks.h"
-#include "subfab/decompose/validate_decomposition.h"
+#include "subfab/validate/validate_decomposition.h"
 
 namespace subfab {
 namespace {

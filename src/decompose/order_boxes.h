@@ -38,7 +38,7 @@
 #include <vector>
 
 #include "subfab/core/progress.h"
-#include "subfab/decompose/height_box.h"
+#include "subfab/geometry/height_box.h"
 
 namespace subfab::detail {
 

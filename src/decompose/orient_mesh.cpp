@@ -11,7 +11,7 @@
 #include <sstream>
 #include <vector>
 
-#include "decompose/exact_normal_signs.h"
+#include "geometry/exact_normal_signs.h"
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
 

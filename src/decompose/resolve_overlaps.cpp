@@ -13,7 +13,7 @@
 
 #include "decompose/order_boxes.h"
 #include "decompose/resolve_overlaps_detail.h"
-#include "decompose/triangle_meets_closed_box.h"
+#include "geometry/triangle_meets_closed_box.h"
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
 

@@ -7,7 +7,7 @@
 #include <functional>
 
 #include "decompose/order_boxes.h"
-#include "decompose/solid_index.h"
+#include "geometry/solid_index.h"
 #include "subfab/decompose/resolve_overlaps.h"
 
 namespace subfab::detail {

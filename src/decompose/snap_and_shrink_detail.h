@@ -3,7 +3,7 @@
 //! snap_and_shrink() on a prebuilt SolidIndex (the pipeline builds one).
 #pragma once
 
-#include "decompose/solid_index.h"
+#include "geometry/solid_index.h"
 #include "subfab/decompose/snap_and_shrink.h"
 
 namespace subfab::detail {

@@ -11,7 +11,7 @@
 
 #include "subfab/core/error.h"
 #include "unfold/exact_poly_mesh.h"
-#include "unfold/hausdorff_distance.h"
+#include "geometry/hausdorff_distance.h"
 
 namespace subfab {
 
@@ -63,7 +63,7 @@ struct HalfLine {
 class HoleCloser {
  public:
   HoleCloser(ExactPolyMesh& mesh, const std::unordered_map<std::uint64_t, int>& owner,
-             const std::vector<int>& region, double max_extension, const unfold_detail::SurfaceDistance* reference,
+             const std::vector<int>& region, double max_extension, const detail::SurfaceDistance* reference,
              double max_distance)
       : mesh_(mesh),
         owner_(owner),
@@ -373,7 +373,7 @@ class HoleCloser {
   const std::unordered_map<std::uint64_t, int>& owner_;
   std::vector<int> region_;
   double max_extension_;
-  const unfold_detail::SurfaceDistance* reference_;
+  const detail::SurfaceDistance* reference_;
   double max_distance_;
   std::vector<Vec3> region_points_;
   std::vector<int> cycle_;
@@ -390,7 +390,7 @@ class HoleCloser {
 // that died.
 struct Limits {
   double max_extension = 0;
-  const unfold_detail::SurfaceDistance* reference = nullptr;
+  const detail::SurfaceDistance* reference = nullptr;
   double max_distance = 0;
 };
 
@@ -484,8 +484,8 @@ DeleteFacetsResult delete_facets(const PolyMesh& input, const DeleteFacetsOption
   }
 
   if (options.min_facet_area > 0) {
-    std::unique_ptr<unfold_detail::SurfaceDistance> reference;
-    if (options.reference) reference = std::make_unique<unfold_detail::SurfaceDistance>(*options.reference);
+    std::unique_ptr<detail::SurfaceDistance> reference;
+    if (options.reference) reference = std::make_unique<detail::SurfaceDistance>(*options.reference);
     const Limits limits{options.max_extension, reference.get(), options.max_distance_to_reference};
     // A failed attempt is retried only when a facet of the group or around
     // it has changed since (versions bumped by every successful deletion).

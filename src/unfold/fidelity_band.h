@@ -26,7 +26,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "subfab/checks/classify_grid_points.h"
+#include "subfab/geometry/classify_grid_points.h"
 #include "subfab/mesh/mesh.h"
 
 namespace subfab::unfold_detail {

@@ -9,7 +9,7 @@
 #include "subfab/unfold/build_lattice.h"
 #include "subfab/unfold/extract_charts.h"
 #include "subfab/unfold/marching_cubes.h"
-#include "unfold/hausdorff_distance.h"
+#include "geometry/hausdorff_distance.h"
 #include "unfold/triangulate_facets.h"
 
 namespace subfab {
@@ -85,8 +85,8 @@ SimplifyUnfoldableResult simplify_unfoldable(const Mesh& mesh, const SimplifyUnf
       throw AlgorithmError("refolding the nets misses the model by " + std::to_string(result.refold_error) +
                            " (more than 1e-9 of the diagonal)");
     const Mesh triangles = unfold_detail::triangulate_facets(result.mesh);
-    result.summary.hausdorff = unfold_detail::hausdorff_distance(mesh, triangles, 60000);
-    result.hausdorff_after_masks = unfold_detail::hausdorff_distance(mesh, masked_triangles, 30000);
+    result.summary.hausdorff = detail::hausdorff_distance(mesh, triangles, 60000);
+    result.hausdorff_after_masks = detail::hausdorff_distance(mesh, masked_triangles, 30000);
     if (progress) {
       progress->info(std::to_string(result.summary.facets_final) + " facets, " +
                      std::to_string(result.summary.nets) + " nets, Hausdorff distance " +

@@ -5,9 +5,9 @@
 
 #include <limits>
 
-#include "checks/test_shapes.h"
+#include "support/test_shapes.h"
 #include "subfab/mesh/read_mesh.h"
-#include "test_support.h"
+#include "support/test_support.h"
 
 namespace subfab {
 namespace {

@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include "checks/test_shapes.h"
+#include "support/test_shapes.h"
 
 namespace subfab {
 namespace {

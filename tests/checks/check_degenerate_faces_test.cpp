@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "checks/test_shapes.h"
+#include "support/test_shapes.h"
 
 namespace subfab {
 namespace {

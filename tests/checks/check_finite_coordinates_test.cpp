@@ -5,7 +5,7 @@
 
 #include <limits>
 
-#include "checks/test_shapes.h"
+#include "support/test_shapes.h"
 
 namespace subfab {
 namespace {

@@ -5,10 +5,10 @@
 
 #include <string>
 
-#include "checks/test_shapes.h"
+#include "support/test_shapes.h"
 #include "subfab/core/error.h"
 #include "subfab/mesh/read_mesh.h"
-#include "test_support.h"
+#include "support/test_support.h"
 
 namespace subfab {
 namespace {

@@ -7,9 +7,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "decompose/block_test_shapes.h"
+#include "support/block_test_shapes.h"
 #include "subfab/mesh/write_mesh.h"
-#include "test_support.h"
+#include "support/test_support.h"
 
 namespace subfab {
 namespace {

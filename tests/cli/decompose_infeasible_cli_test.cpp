@@ -4,7 +4,7 @@
 // 3) instead of a failure deep in grow.
 #include <gtest/gtest.h>
 
-#include "test_support.h"
+#include "support/test_support.h"
 
 namespace subfab {
 namespace {

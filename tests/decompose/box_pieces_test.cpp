@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "block_test_shapes.h"
+#include "support/block_test_shapes.h"
 #include "subfab/decompose/grow_boxes.h"
 
 namespace subfab {

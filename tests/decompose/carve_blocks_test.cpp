@@ -6,12 +6,12 @@
 #include <cmath>
 #include <map>
 
-#include "decompose/block_test_shapes.h"
+#include "support/block_test_shapes.h"
 #include "subfab/core/parallel.h"
 #include "subfab/decompose/finalize_blocks.h"
-#include "subfab/decompose/validate_decomposition.h"
+#include "subfab/validate/validate_decomposition.h"
 #include "subfab/mesh/read_mesh.h"
-#include "test_support.h"
+#include "support/test_support.h"
 
 namespace subfab {
 namespace {

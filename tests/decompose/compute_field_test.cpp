@@ -6,15 +6,15 @@
 #include <cmath>
 #include <random>
 
-#include "subfab/checks/classify_grid_points.h"
-#include "decompose/exact_normal_signs.h"
+#include "subfab/geometry/classify_grid_points.h"
+#include "geometry/exact_normal_signs.h"
 #include "decompose/mark_triangle_cells.h"
-#include "decompose/triangle_meets_closed_box.h"
+#include "geometry/triangle_meets_closed_box.h"
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
 #include "subfab/mesh/read_mesh.h"
-#include "decompose/box_shapes.h"
-#include "test_support.h"
+#include "support/box_shapes.h"
+#include "support/test_support.h"
 
 namespace subfab {
 namespace {

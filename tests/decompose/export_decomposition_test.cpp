@@ -7,11 +7,11 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "decompose/block_test_shapes.h"
+#include "support/block_test_shapes.h"
 #include "subfab/decompose/carve_blocks.h"
-#include "subfab/decompose/validate_decomposition.h"
+#include "subfab/validate/validate_decomposition.h"
 #include "subfab/mesh/read_mesh.h"
-#include "test_support.h"
+#include "support/test_support.h"
 
 namespace subfab {
 namespace {

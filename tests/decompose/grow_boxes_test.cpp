@@ -7,14 +7,14 @@
 #include <algorithm>
 #include <string>
 
-#include "decompose/box_shapes.h"
-#include "decompose/solid_index.h"
+#include "support/box_shapes.h"
+#include "geometry/solid_index.h"
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
 #include "subfab/decompose/resolve_overlaps.h"
 #include "subfab/decompose/select_cover.h"
 #include "subfab/mesh/read_mesh.h"
-#include "test_support.h"
+#include "support/test_support.h"
 
 namespace subfab {
 namespace {

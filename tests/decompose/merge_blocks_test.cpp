@@ -3,8 +3,8 @@
 
 #include <gtest/gtest.h>
 
-#include "decompose/block_test_shapes.h"
-#include "subfab/decompose/validate_decomposition.h"
+#include "support/block_test_shapes.h"
+#include "subfab/validate/validate_decomposition.h"
 
 namespace subfab {
 namespace {

@@ -8,10 +8,10 @@
 
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
-#include "subfab/decompose/find_infeasible_features.h"
+#include "subfab/fidelity/find_infeasible_features.h"
 #include "subfab/mesh/read_mesh.h"
-#include "decompose/box_shapes.h"
-#include "test_support.h"
+#include "support/box_shapes.h"
+#include "support/test_support.h"
 
 namespace subfab {
 namespace {

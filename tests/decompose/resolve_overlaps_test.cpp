@@ -14,10 +14,10 @@
 #include <set>
 #include <string>
 
-#include "decompose/block_test_shapes.h"
+#include "support/block_test_shapes.h"
 #include "decompose/resolve_overlaps_detail.h"
-#include "decompose/solid_index.h"
-#include "decompose/voxel_solid.h"
+#include "geometry/solid_index.h"
+#include "support/voxel_solid.h"
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
 

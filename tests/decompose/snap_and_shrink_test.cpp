@@ -5,8 +5,8 @@
 
 #include <random>
 
-#include "decompose/solid_index.h"
-#include "decompose/voxel_solid.h"
+#include "geometry/solid_index.h"
+#include "support/voxel_solid.h"
 #include "subfab/core/error.h"
 
 namespace subfab {

@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "subfab/mesh/read_mesh.h"
-#include "test_support.h"
+#include "support/test_support.h"
 
 namespace subfab {
 namespace {

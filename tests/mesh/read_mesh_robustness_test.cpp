@@ -14,7 +14,7 @@
 
 #include "subfab/core/error.h"
 #include "subfab/mesh/read_mesh.h"
-#include "test_support.h"
+#include "support/test_support.h"
 
 namespace subfab {
 namespace {

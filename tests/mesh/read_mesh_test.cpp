@@ -13,9 +13,9 @@
 #include <set>
 #include <string>
 
-#include "mesh/manifest.h"
+#include "support/manifest.h"
 #include "subfab/core/error.h"
-#include "test_support.h"
+#include "support/test_support.h"
 
 namespace subfab {
 namespace {

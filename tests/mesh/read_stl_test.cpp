@@ -2,10 +2,10 @@
 // STL reading (src/mesh/read_stl.cpp) on the samples of data/formats/.
 #include <gtest/gtest.h>
 
-#include "mesh/mesh_compare.h"
+#include "support/mesh_compare.h"
 #include "subfab/core/error.h"
 #include "subfab/mesh/read_mesh.h"
-#include "test_support.h"
+#include "support/test_support.h"
 
 namespace subfab {
 namespace {

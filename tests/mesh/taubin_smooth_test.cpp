@@ -7,7 +7,7 @@
 #include <cmath>
 #include <vector>
 
-#include "mesh/smooth_test_shapes.h"
+#include "support/smooth_test_shapes.h"
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
 

@@ -7,9 +7,9 @@
 #include <limits>
 
 #include "subfab/core/error.h"
-#include "mesh/mesh_compare.h"
+#include "support/mesh_compare.h"
 #include "subfab/mesh/read_mesh.h"
-#include "test_support.h"
+#include "support/test_support.h"
 
 namespace subfab {
 namespace {

@@ -15,8 +15,8 @@
 #include "subfab/core/parallel.h"
 #include "subfab/mesh/read_mesh.h"
 #include "subfab/unfold/lattice_directions.h"
-#include "test_support.h"
-#include "unfold/hausdorff_distance.h"
+#include "support/test_support.h"
+#include "geometry/hausdorff_distance.h"
 #include "unfold/mask_catalogue.h"
 
 namespace subfab {
@@ -182,7 +182,7 @@ TEST(ApplyMasks, RealModelsStayValidAndLoseFacets) {
     // Fidelity band: every surface vertex within 1.5 spacings of the input
     // (guaranteed), and the input within 1.5 spacings of the surface (its
     // samples keep a surface vertex in their ball; estimated on samples).
-    EXPECT_LE(unfold_detail::hausdorff_distance(m, r.surface.mesh, 20000), 1.5 * l.grid.spacing) << model.path;
+    EXPECT_LE(detail::hausdorff_distance(m, r.surface.mesh, 20000), 1.5 * l.grid.spacing) << model.path;
     EXPECT_LT(r.charts.poly.num_facets(), c.poly.num_facets()) << model.path;
     EXPECT_EQ(euler(r.surface.mesh), euler(s.mesh)) << model.path;
     EXPECT_FALSE(r.hit_flip_cap) << model.path;

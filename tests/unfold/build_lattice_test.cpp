@@ -5,11 +5,11 @@
 
 #include <cmath>
 
-#include "subfab/checks/classify_grid_points.h"
+#include "subfab/geometry/classify_grid_points.h"
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
 #include "subfab/mesh/read_mesh.h"
-#include "test_support.h"
+#include "support/test_support.h"
 
 namespace subfab {
 namespace {

@@ -8,11 +8,11 @@
 #include <sstream>
 
 #include "subfab/mesh/read_mesh.h"
-#include "test_support.h"
-#include "unfold/hausdorff_distance.h"
+#include "support/test_support.h"
+#include "geometry/hausdorff_distance.h"
 #include "unfold/triangulate_facets.h"
 #include "unfold/write_png.h"
-#include "unfold_test_shapes.h"
+#include "support/unfold_test_shapes.h"
 
 namespace subfab {
 namespace {
@@ -44,9 +44,9 @@ TEST(ExportUnfolding, HausdorffOfKnownOffsets) {
   std::vector<int> owner;
   const Mesh a = unfold_detail::triangulate_facets(test::box(2, 2, 2), &owner);
   Mesh b = a;
-  EXPECT_NEAR(unfold_detail::hausdorff_distance(a, b, 1000), 0.0, 1e-12);
+  EXPECT_NEAR(detail::hausdorff_distance(a, b, 1000), 0.0, 1e-12);
   for (auto& v : b.vertices) v.z() *= 1.5;  // top moves up by 1
-  EXPECT_NEAR(unfold_detail::hausdorff_distance(a, b, 1000), 1.0, 1e-9);
+  EXPECT_NEAR(detail::hausdorff_distance(a, b, 1000), 1.0, 1e-9);
 }
 
 TEST(ExportUnfolding, PngIsWellFormed) {

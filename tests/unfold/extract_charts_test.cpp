@@ -9,7 +9,7 @@
 #include "subfab/unfold/build_lattice.h"
 #include "subfab/unfold/lattice_directions.h"
 #include "subfab/unfold/marching_cubes.h"
-#include "test_support.h"
+#include "support/test_support.h"
 
 namespace subfab {
 namespace {

@@ -6,7 +6,7 @@
 #include "subfab/core/error.h"
 #include "subfab/unfold/apply_masks.h"
 #include "subfab/unfold/marching_cubes.h"
-#include "unfold/hausdorff_distance.h"
+#include "geometry/hausdorff_distance.h"
 
 namespace subfab {
 namespace {
@@ -80,9 +80,9 @@ TEST(FidelityBand, MaskStageKeepsTheThinPillar) {
   EXPECT_TRUE(kept.lattice.is_inside(4, 4, 8));
   EXPECT_TRUE(kept.lattice.is_inside(4, 4, 7));
   EXPECT_GT(kept.num_rejected_fidelity, 0u);
-  const unfold_detail::SurfaceDistance to_surface(kept.surface.mesh);
+  const detail::SurfaceDistance to_surface(kept.surface.mesh);
   for (const Vec3& v : p.input.vertices) EXPECT_LE(to_surface(v), 1.5) << v.transpose();
-  const unfold_detail::SurfaceDistance to_free(free.surface.mesh);
+  const detail::SurfaceDistance to_free(free.surface.mesh);
   EXPECT_GT(to_free(Vec3(4.2, 4.2, 9.2)), 1.5);  // what the band prevents
   EXPECT_THROW(apply_masks(p.lattice, {.reference = &p.input, .fidelity_radius = -1}), InvalidArgumentError);
 }

@@ -12,10 +12,10 @@
 #include "subfab/checks/check_non_manifold_edges.h"
 #include "subfab/checks/check_non_manifold_vertices.h"
 #include "subfab/checks/check_self_intersections.h"
-#include "subfab/checks/classify_grid_points.h"
+#include "subfab/geometry/classify_grid_points.h"
 #include "subfab/mesh/read_mesh.h"
 #include "subfab/unfold/lattice_directions.h"
-#include "test_support.h"
+#include "support/test_support.h"
 #include "unfold/mc_case_table.h"
 
 namespace subfab {

@@ -7,7 +7,7 @@
 #include <set>
 
 #include "unfold/polygons_overlap.h"
-#include "unfold_test_shapes.h"
+#include "support/unfold_test_shapes.h"
 
 namespace subfab {
 namespace {

@@ -32,8 +32,8 @@
 #include <vector>
 
 #include "subfab/core/progress.h"
-#include "subfab/decompose/axis.h"
-#include "subfab/decompose/height_box.h"
+#include "subfab/geometry/axis.h"
+#include "subfab/geometry/height_box.h"
 #include "subfab/mesh/mesh.h"
 
 namespace subfab {

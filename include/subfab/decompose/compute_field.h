@@ -45,7 +45,7 @@
 #include <vector>
 
 #include "subfab/core/progress.h"
-#include "subfab/decompose/axis.h"
+#include "subfab/geometry/axis.h"
 #include "subfab/mesh/mesh.h"
 
 namespace subfab {

@@ -19,7 +19,7 @@
 
 #include "subfab/core/progress.h"
 #include "subfab/decompose/carve_blocks.h"
-#include "subfab/decompose/repair_infeasible_features.h"
+#include "subfab/fidelity/repair_infeasible_features.h"
 #include "subfab/mesh/mesh.h"
 
 namespace subfab {

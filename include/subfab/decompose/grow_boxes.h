@@ -45,7 +45,7 @@
 
 #include "subfab/core/progress.h"
 #include "subfab/decompose/compute_field.h"
-#include "subfab/decompose/height_box.h"
+#include "subfab/geometry/height_box.h"
 #include "subfab/mesh/mesh.h"
 
 namespace subfab {
@@ -95,7 +95,7 @@ struct GrowResult {
 //! refinement). Boxes are valid in the exact sense of the decomposition: no
 //! triangle facing away from the box's axis meets its open interior. A face
 //! is covered when it lies in the closed box with the solid on the box's
-//! side (see src/decompose/solid_index.h).
+//! side (see src/geometry/solid_index.h).
 //! \param mesh closed, manifold, oriented, self-intersection-free triangle
 //!        mesh in the canonical frame (after orient), model units.
 //! \throw InvalidArgumentError on non-positive or NaN options.

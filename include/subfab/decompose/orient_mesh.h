@@ -44,7 +44,7 @@
 #include <vector>
 
 #include "subfab/core/progress.h"
-#include "subfab/decompose/find_infeasible_features.h"
+#include "subfab/fidelity/find_infeasible_features.h"
 #include "subfab/mesh/mesh.h"
 
 namespace subfab {

@@ -39,7 +39,7 @@
 #include <vector>
 
 #include "subfab/core/progress.h"
-#include "subfab/decompose/height_box.h"
+#include "subfab/geometry/height_box.h"
 #include "subfab/mesh/mesh.h"
 
 namespace subfab {

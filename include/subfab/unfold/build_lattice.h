@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "subfab/checks/classify_grid_points.h"
+#include "subfab/geometry/classify_grid_points.h"
 #include "subfab/core/progress.h"
 #include "subfab/mesh/mesh.h"
 

@@ -1,0 +1,588 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "geometry/solid_index.h"
+
+#include <CGAL/Exact_rational.h>
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <numeric>
+
+#include "geometry/exact_normal_signs.h"
+#include "subfab/core/error.h"
+
+namespace subfab::detail {
+namespace {
+
+using Exact = CGAL::Exact_rational;
+
+constexpr double kEps = 0x1p-53;  // half an ulp of 1 (Shewchuk's epsilon)
+// Error bounds of Shewchuk's orient2d / orient3d, which have exactly the
+// structure evaluated below (products of rounded differences of inputs).
+constexpr double kDet2Bound = (3.0 + 16.0 * kEps) * kEps;
+constexpr double kDet3Bound = (7.0 + 56.0 * kEps) * kEps;
+// Below this magnitude products may have underflowed: go exact.
+constexpr double kTiny = 1e-280;
+
+int sign_of(const Exact& x) { return CGAL::sign(x); }
+
+template <class T>
+int sign_of_number(T x) {
+  return (x > 0) - (x < 0);
+}
+
+//! Exact sign of (ux1 - ux0) * (vy1 - vy0) - (uy1 - uy0) * (vx1 - vx0).
+int det2_sign(double ux1, double ux0, double uy1, double uy0, double vx1, double vx0, double vy1,
+              double vy0) {
+  const double t1 = (ux1 - ux0) * (vy1 - vy0);
+  const double t2 = (uy1 - uy0) * (vx1 - vx0);
+  const double det = t1 - t2;
+  const double sum = std::abs(t1) + std::abs(t2);
+  if (sum > kTiny && std::isfinite(sum) && std::abs(det) > kDet2Bound * sum) return sign_of_number(det);
+  if (sum == 0.0 && t1 == 0.0 && t2 == 0.0) {
+    // Both products are exactly zero iff one factor of each is exactly zero
+    // (products of nonzero doubles can only underflow below kTiny: handled
+    // by the exact path, since then sum <= kTiny but some factor is nonzero).
+    const bool z1 = (ux1 == ux0) || (vy1 == vy0);
+    const bool z2 = (uy1 == uy0) || (vx1 == vx0);
+    if (z1 && z2) return 0;
+  }
+  const Exact e = (Exact(ux1) - Exact(ux0)) * (Exact(vy1) - Exact(vy0)) -
+                  (Exact(uy1) - Exact(uy0)) * (Exact(vx1) - Exact(vx0));
+  return sign_of(e);
+}
+
+}  // namespace
+
+int normal_component_sign(const Vec3& a, const Vec3& b, const Vec3& c, int dim) {
+  const int i = (dim + 1) % 3;
+  const int j = (dim + 2) % 3;
+  // n_dim = (b - a)_i (c - a)_j - (b - a)_j (c - a)_i
+  return det2_sign(b[i], a[i], b[j], a[j], c[i], a[i], c[j], a[j]);
+}
+
+int orient3d_sign(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& p) {
+  const double ux = b.x() - a.x(), uy = b.y() - a.y(), uz = b.z() - a.z();
+  const double vx = c.x() - a.x(), vy = c.y() - a.y(), vz = c.z() - a.z();
+  const double wx = p.x() - a.x(), wy = p.y() - a.y(), wz = p.z() - a.z();
+  // det[u; v; w] = w . (u x v)
+  const double m1a = uy * vz, m1b = uz * vy;
+  const double m2a = uz * vx, m2b = ux * vz;
+  const double m3a = ux * vy, m3b = uy * vx;
+  const double det = wx * (m1a - m1b) + wy * (m2a - m2b) + wz * (m3a - m3b);
+  const double permanent = std::abs(wx) * (std::abs(m1a) + std::abs(m1b)) +
+                           std::abs(wy) * (std::abs(m2a) + std::abs(m2b)) +
+                           std::abs(wz) * (std::abs(m3a) + std::abs(m3b));
+  if (permanent > kTiny && std::isfinite(permanent) && std::abs(det) > kDet3Bound * permanent)
+    return sign_of_number(det);
+  const Exact eux = Exact(b.x()) - Exact(a.x()), euy = Exact(b.y()) - Exact(a.y()),
+              euz = Exact(b.z()) - Exact(a.z());
+  const Exact evx = Exact(c.x()) - Exact(a.x()), evy = Exact(c.y()) - Exact(a.y()),
+              evz = Exact(c.z()) - Exact(a.z());
+  const Exact ewx = Exact(p.x()) - Exact(a.x()), ewy = Exact(p.y()) - Exact(a.y()),
+              ewz = Exact(p.z()) - Exact(a.z());
+  const Exact e = ewx * (euy * evz - euz * evy) + ewy * (euz * evx - eux * evz) + ewz * (eux * evy - euy * evx);
+  return sign_of(e);
+}
+
+bool triangle_meets_open_box(const Vec3& a, const Vec3& b, const Vec3& c, const Box3& box) {
+  const Vec3& lo = box.min;
+  const Vec3& hi = box.max;
+  for (int k = 0; k < 3; ++k)
+    if (!(hi[k] > lo[k])) return false;  // empty interior
+  // 1. Box face normals: the triangle's bounding box.
+  for (int k = 0; k < 3; ++k) {
+    const double tmin = std::min({a[k], b[k], c[k]});
+    const double tmax = std::max({a[k], b[k], c[k]});
+    if (tmax <= lo[k] || tmin >= hi[k]) return false;
+  }
+  // 2. Triangle normal n: separated iff the whole box is weakly on one side
+  //    of the triangle's plane (skipped when n = 0).
+  {
+    std::array<int, 3> s{};
+    for (int k = 0; k < 3; ++k) s[k] = normal_component_sign(a, b, c, k);
+    if (s[0] != 0 || s[1] != 0 || s[2] != 0) {
+      Vec3 rmin, rmax;  // box corners minimising / maximising n.x
+      for (int k = 0; k < 3; ++k) {
+        rmin[k] = s[k] > 0 ? lo[k] : hi[k];
+        rmax[k] = s[k] > 0 ? hi[k] : lo[k];
+      }
+      if (orient3d_sign(a, b, c, rmin) >= 0) return false;
+      if (orient3d_sign(a, b, c, rmax) <= 0) return false;
+    }
+  }
+  // 3. Cross products e_k x (q - p) for every box axis k and triangle edge
+  //    (p, q), r the third vertex. In the plane (i, j) orthogonal to k the
+  //    functional is f(x) = e_i x_j - e_j x_i with e = q - p.
+  const std::array<const Vec3*, 3> v = {&a, &b, &c};
+  for (int k = 0; k < 3; ++k) {
+    const int i = (k + 1) % 3;
+    const int j = (k + 2) % 3;
+    for (int e = 0; e < 3; ++e) {
+      const Vec3& p = *v[e];
+      const Vec3& q = *v[(e + 1) % 3];
+      const Vec3& r = *v[(e + 2) % 3];
+      const int si = sign_of_number(q[i] - p[i]);  // exact: sign of a difference of doubles
+      const int sj = sign_of_number(q[j] - p[j]);
+      if (si == 0 && sj == 0) continue;  // edge parallel to e_k: zero axis
+      // Corner of the box rectangle minimising f (coefficient of x_j is e_i,
+      // of x_i is -e_j), and the one maximising it.
+      const double min_j = si > 0 ? lo[j] : hi[j];
+      const double min_i = sj > 0 ? hi[i] : lo[i];
+      const double max_j = si > 0 ? hi[j] : lo[j];
+      const double max_i = sj > 0 ? lo[i] : hi[i];
+      // sign of f(corner) - f(x) = e_i (corner_j - x_j) - e_j (corner_i - x_i)
+      auto diff_sign = [&](double ci, double cj, const Vec3& x) {
+        return det2_sign(q[i], p[i], q[j], p[j], ci, x[i], cj, x[j]);
+      };
+      // Triangle entirely below the box's minimum: f(rmin) >= f(p) = f(q), f(r).
+      if (diff_sign(min_i, min_j, p) >= 0 && diff_sign(min_i, min_j, r) >= 0) return false;
+      // Triangle entirely above the box's maximum.
+      if (diff_sign(max_i, max_j, p) <= 0 && diff_sign(max_i, max_j, r) <= 0) return false;
+    }
+  }
+  return true;
+}
+
+namespace {
+
+//! Bounding-volume hierarchy over face bounding boxes (median split).
+class Bvh {
+ public:
+  struct Node {
+    Box3 bounds;
+    int first = 0;  // leaf: first item; inner: left child (right = left + 1)
+    int count = 0;  // > 0: leaf with `count` items
+  };
+
+  void build(std::vector<int> items, const std::vector<Box3>& boxes) {
+    items_ = std::move(items);
+    nodes_.clear();
+    if (items_.empty()) return;
+    nodes_.reserve(2 * items_.size() / kLeafSize + 2);
+    nodes_.emplace_back();
+    build_node(0, 0, static_cast<int>(items_.size()), boxes);
+  }
+
+  //! Visits the items of every leaf whose bounds pass `node_test`; stops
+  //! early when `visit(item)` returns false. Returns false if stopped.
+  template <class NodeTest, class Visit>
+  bool query(const NodeTest& node_test, const Visit& visit) const {
+    if (nodes_.empty()) return true;
+    int stack[128];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+      const Node& node = nodes_[static_cast<std::size_t>(stack[--top])];
+      if (!node_test(node.bounds)) continue;
+      if (node.count > 0) {
+        for (int n = 0; n < node.count; ++n)
+          if (!visit(items_[static_cast<std::size_t>(node.first + n)])) return false;
+      } else {
+        stack[top++] = node.first + 1;
+        stack[top++] = node.first;
+      }
+    }
+    return true;
+  }
+
+ private:
+  static constexpr int kLeafSize = 4;
+
+  void build_node(int node_index, int begin, int end, const std::vector<Box3>& boxes) {
+    Box3 bounds{Vec3::Constant(std::numeric_limits<double>::infinity()),
+                Vec3::Constant(-std::numeric_limits<double>::infinity())};
+    Vec3 cmin = bounds.min, cmax = bounds.max;
+    for (int n = begin; n < end; ++n) {
+      const Box3& b = boxes[static_cast<std::size_t>(items_[static_cast<std::size_t>(n)])];
+      bounds.min = bounds.min.cwiseMin(b.min);
+      bounds.max = bounds.max.cwiseMax(b.max);
+      const Vec3 centre = 0.5 * (b.min + b.max);
+      cmin = cmin.cwiseMin(centre);
+      cmax = cmax.cwiseMax(centre);
+    }
+    nodes_[static_cast<std::size_t>(node_index)].bounds = bounds;
+    if (end - begin <= kLeafSize) {
+      nodes_[static_cast<std::size_t>(node_index)].first = begin;
+      nodes_[static_cast<std::size_t>(node_index)].count = end - begin;
+      return;
+    }
+    int dim = 0;
+    const Vec3 extent = cmax - cmin;
+    if (extent[1] > extent[dim]) dim = 1;
+    if (extent[2] > extent[dim]) dim = 2;
+    const int mid = begin + (end - begin) / 2;
+    auto key = [&](int f) {
+      const Box3& b = boxes[static_cast<std::size_t>(f)];
+      return b.min[dim] + b.max[dim];
+    };
+    std::nth_element(items_.begin() + begin, items_.begin() + mid, items_.begin() + end, [&](int x, int y) {
+      const double kx = key(x), ky = key(y);
+      return kx < ky || (kx == ky && x < y);
+    });
+    const int left = static_cast<int>(nodes_.size());
+    nodes_.emplace_back();
+    nodes_.emplace_back();
+    nodes_[static_cast<std::size_t>(node_index)].first = left;
+    nodes_[static_cast<std::size_t>(node_index)].count = 0;
+    build_node(left, begin, mid, boxes);
+    build_node(left + 1, mid, end, boxes);
+  }
+
+  std::vector<Node> nodes_;
+  std::vector<int> items_;
+};
+
+//! Monotone map of doubles to integers (adjacent doubles map to adjacent
+//! integers; -0 and +0 both map to 0).
+std::int64_t ordered_key(double x) {
+  const auto bits = std::bit_cast<std::int64_t>(x);
+  return bits >= 0 ? bits : std::numeric_limits<std::int64_t>::min() - bits;
+}
+double from_ordered_key(std::int64_t key) {
+  return key >= 0 ? std::bit_cast<double>(key)
+                  : std::bit_cast<double>(std::numeric_limits<std::int64_t>::min() - key);
+}
+
+//! Sutherland-Hodgman clip of a convex polygon against x[dim] >= value
+//! (sign +1) or x[dim] <= value (sign -1). Approximate (used only to order
+//! candidates and to start exact searches).
+void clip_polygon(std::vector<Vec3>& poly, int dim, double value, int sign, std::vector<Vec3>& scratch) {
+  scratch.clear();
+  const std::size_t n = poly.size();
+  for (std::size_t m = 0; m < n; ++m) {
+    const Vec3& p = poly[m];
+    const Vec3& q = poly[(m + 1) % n];
+    const double dp = sign * (p[dim] - value);
+    const double dq = sign * (q[dim] - value);
+    if (dp >= 0) scratch.push_back(p);
+    if ((dp >= 0) != (dq >= 0)) {
+      const double t = dp / (dp - dq);
+      Vec3 x = p + t * (q - p);
+      x[dim] = value;
+      scratch.push_back(x);
+    }
+  }
+  poly.swap(scratch);
+}
+
+}  // namespace
+
+struct SolidIndex::Impl {
+  Mesh mesh;
+  std::vector<Box3> boxes;                      // per face
+  std::vector<std::array<std::int8_t, 3>> normal_signs;  // per face: exact sign of n_x, n_y, n_z
+  std::vector<std::array<std::int8_t, 3>> facing;        // per face: facing_signs() (= normal_signs when exact)
+  std::array<std::vector<int>, 6> away;         // per axis: faces with n.d < 0
+  std::array<Bvh, 6> away_bvh;                  // per axis, over `away`
+  Bvh all_bvh;                                  // all faces
+
+  const Vec3& vertex(int face, int corner) const {
+    return mesh.vertices[static_cast<std::size_t>(mesh.faces[static_cast<std::size_t>(face)][static_cast<std::size_t>(corner)])];
+  }
+  int facing_sign(int face, Axis axis) const {
+    return axis_sign(axis) * facing[static_cast<std::size_t>(face)][static_cast<std::size_t>(axis_dimension(axis))];
+  }
+  bool meets(int face, const Box3& box) const {
+    return triangle_meets_open_box(vertex(face, 0), vertex(face, 1), vertex(face, 2), box);
+  }
+};
+
+namespace {
+//! Does the closed box `node` overlap the open box `box` (could a triangle
+//! inside `node` meet the open interior)?
+bool overlaps_open(const Box3& node, const Box3& box) {
+  return (node.max.array() > box.min.array()).all() && (node.min.array() < box.max.array()).all();
+}
+}  // namespace
+
+SolidIndex::SolidIndex(const Mesh& mesh, double overhang_sine) : impl_(std::make_unique<Impl>()) {
+  Impl& m = *impl_;
+  m.mesh = mesh;
+  const std::size_t nf = mesh.faces.size();
+  for (const Triangle& t : mesh.faces)
+    for (int v : t)
+      if (v < 0 || static_cast<std::size_t>(v) >= mesh.vertices.size())
+        throw InvalidMeshError("SolidIndex: face index out of range");
+  m.boxes.resize(nf);
+  m.normal_signs.resize(nf);
+  for (std::size_t f = 0; f < nf; ++f) {
+    const int fi = static_cast<int>(f);
+    const Vec3& a = m.vertex(fi, 0);
+    const Vec3& b = m.vertex(fi, 1);
+    const Vec3& c = m.vertex(fi, 2);
+    m.boxes[f].min = a.cwiseMin(b).cwiseMin(c);
+    m.boxes[f].max = a.cwiseMax(b).cwiseMax(c);
+    for (int k = 0; k < 3; ++k)
+      m.normal_signs[f][static_cast<std::size_t>(k)] = static_cast<std::int8_t>(normal_component_sign(a, b, c, k));
+  }
+  m.facing = overhang_sine > 0.0 ? facing_signs(mesh, overhang_sine) : m.normal_signs;
+  for (Axis axis : kAllAxes) {
+    auto& list = m.away[static_cast<std::size_t>(axis_index(axis))];
+    for (std::size_t f = 0; f < nf; ++f)
+      if (m.facing_sign(static_cast<int>(f), axis) < 0) list.push_back(static_cast<int>(f));
+    m.away_bvh[static_cast<std::size_t>(axis_index(axis))].build(list, m.boxes);
+  }
+  std::vector<int> all(nf);
+  std::iota(all.begin(), all.end(), 0);
+  m.all_bvh.build(std::move(all), m.boxes);
+}
+
+SolidIndex::~SolidIndex() = default;
+SolidIndex::SolidIndex(SolidIndex&&) noexcept = default;
+SolidIndex& SolidIndex::operator=(SolidIndex&&) noexcept = default;
+
+const Mesh& SolidIndex::mesh() const { return impl_->mesh; }
+int SolidIndex::num_faces() const { return static_cast<int>(impl_->mesh.faces.size()); }
+
+int SolidIndex::facing_sign(int face, Axis axis) const { return impl_->facing_sign(face, axis); }
+
+const std::vector<int>& SolidIndex::faces_facing_away(Axis axis) const {
+  return impl_->away[static_cast<std::size_t>(axis_index(axis))];
+}
+
+const Box3& SolidIndex::face_box(int face) const { return impl_->boxes[static_cast<std::size_t>(face)]; }
+
+bool SolidIndex::face_meets_open_box(int face, const Box3& box) const { return impl_->meets(face, box); }
+
+bool SolidIndex::box_is_valid(const Box3& box, Axis axis) const {
+  for (int k = 0; k < 3; ++k)
+    if (!(box.max[k] > box.min[k])) return true;
+  const Impl& m = *impl_;
+  return m.away_bvh[static_cast<std::size_t>(axis_index(axis))].query(
+      [&](const Box3& node) { return overlaps_open(node, box); },
+      [&](int f) { return !(overlaps_open(m.boxes[static_cast<std::size_t>(f)], box) && m.meets(f, box)); });
+}
+
+std::vector<int> SolidIndex::blocking_faces(const Box3& box, Axis axis, std::size_t max_count) const {
+  std::vector<int> result;
+  for (int k = 0; k < 3; ++k)
+    if (!(box.max[k] > box.min[k])) return result;
+  const Impl& m = *impl_;
+  m.away_bvh[static_cast<std::size_t>(axis_index(axis))].query(
+      [&](const Box3& node) { return overlaps_open(node, box); },
+      [&](int f) {
+        if (overlaps_open(m.boxes[static_cast<std::size_t>(f)], box) && m.meets(f, box)) result.push_back(f);
+        return true;
+      });
+  std::sort(result.begin(), result.end());
+  if (result.size() > max_count) result.resize(max_count);
+  return result;
+}
+
+std::vector<int> SolidIndex::faces_meeting_open_box(const Box3& box) const {
+  std::vector<int> result;
+  for (int k = 0; k < 3; ++k)
+    if (!(box.max[k] > box.min[k])) return result;
+  const Impl& m = *impl_;
+  m.all_bvh.query([&](const Box3& node) { return overlaps_open(node, box); },
+                  [&](int f) {
+                    if (overlaps_open(m.boxes[static_cast<std::size_t>(f)], box) && m.meets(f, box))
+                      result.push_back(f);
+                    return true;
+                  });
+  std::sort(result.begin(), result.end());
+  return result;
+}
+
+bool SolidIndex::any_face_meets_open_box(const Box3& box) const {
+  for (int k = 0; k < 3; ++k)
+    if (!(box.max[k] > box.min[k])) return false;
+  const Impl& m = *impl_;
+  return !m.all_bvh.query([&](const Box3& node) { return overlaps_open(node, box); },
+                          [&](int f) { return !(overlaps_open(m.boxes[static_cast<std::size_t>(f)], box) && m.meets(f, box)); });
+}
+
+std::vector<int> SolidIndex::faces_near_closed_box(const Box3& box) const {
+  std::vector<int> result;
+  const Impl& m = *impl_;
+  auto touches = [&](const Box3& b) {
+    return (b.max.array() >= box.min.array()).all() && (b.min.array() <= box.max.array()).all();
+  };
+  m.all_bvh.query(touches, [&](int f) {
+    if (touches(m.boxes[static_cast<std::size_t>(f)])) result.push_back(f);
+    return true;
+  });
+  std::sort(result.begin(), result.end());
+  return result;
+}
+
+bool SolidIndex::face_covered(int face, const Box3& box, Axis axis) const {
+  const Impl& m = *impl_;
+  const Box3& fb = m.boxes[static_cast<std::size_t>(face)];
+  if (!box.contains(fb.min) || !box.contains(fb.max)) return false;
+  bool in_some_plane = false;
+  const auto& s = m.normal_signs[static_cast<std::size_t>(face)];
+  for (int k = 0; k < 3; ++k) {
+    // The face lies in plane x_k = box.min[k] iff all its vertices do, i.e.
+    // its bounding box has max == box.min there.
+    if (fb.max[k] == box.min[k]) {
+      in_some_plane = true;
+      if (s[static_cast<std::size_t>(k)] >= 0 && (s[0] != 0 || s[1] != 0 || s[2] != 0)) return false;
+    }
+    if (fb.min[k] == box.max[k]) {
+      in_some_plane = true;
+      if (s[static_cast<std::size_t>(k)] <= 0 && (s[0] != 0 || s[1] != 0 || s[2] != 0)) return false;
+    }
+  }
+  if (in_some_plane) return true;
+  return m.facing_sign(face, axis) >= 0;
+}
+
+std::vector<int> SolidIndex::faces_covered(const Box3& box, Axis axis) const {
+  std::vector<int> result;
+  const Impl& m = *impl_;
+  m.all_bvh.query(
+      [&](const Box3& node) {
+        return (node.max.array() >= box.min.array()).all() && (node.min.array() <= box.max.array()).all();
+      },
+      [&](int f) {
+        if (face_covered(f, box, axis)) result.push_back(f);
+        return true;
+      });
+  std::sort(result.begin(), result.end());
+  return result;
+}
+
+double SolidIndex::push_face(const Box3& box, Axis axis, int dim, int side, double limit) const {
+  const Impl& m = *impl_;
+  const double current = side > 0 ? box.max[dim] : box.min[dim];
+  if (side > 0 ? !(limit > current) : !(limit < current)) return current;
+  for (int k = 0; k < 3; ++k)
+    if (k != dim && !(box.max[k] > box.min[k])) return limit;  // interior stays empty
+  Box3 region = box;
+  (side > 0 ? region.max[dim] : region.min[dim]) = limit;
+  auto box_at = [&](double t) {
+    Box3 b = box;
+    (side > 0 ? b.max[dim] : b.min[dim]) = t;
+    return b;
+  };
+
+  // Candidates: facing-away faces whose bounding box reaches the moving
+  // face's plane and overlaps the swept region's open interior laterally.
+  struct Candidate {
+    double estimate;  // approximate first-contact position
+    int face;
+  };
+  std::vector<Candidate> candidates;
+  std::vector<Vec3> poly, scratch;
+  m.away_bvh[static_cast<std::size_t>(axis_index(axis))].query(
+      [&](const Box3& node) { return overlaps_open(node, region); },
+      [&](int f) {
+        const Box3& fb = m.boxes[static_cast<std::size_t>(f)];
+        if (!overlaps_open(fb, region)) return true;
+        if (side > 0 ? fb.max[dim] < current : fb.min[dim] > current) return true;
+        // Approximate contact: clip the triangle to the closed swept region.
+        poly = {m.vertex(f, 0), m.vertex(f, 1), m.vertex(f, 2)};
+        for (int k = 0; k < 3 && !poly.empty(); ++k) {
+          if (k == dim) continue;
+          clip_polygon(poly, k, box.min[k], +1, scratch);
+          if (!poly.empty()) clip_polygon(poly, k, box.max[k], -1, scratch);
+        }
+        if (!poly.empty()) clip_polygon(poly, dim, current, side, scratch);
+        double estimate = limit;
+        for (const Vec3& p : poly)
+          estimate = side > 0 ? std::min(estimate, p[dim]) : std::max(estimate, p[dim]);
+        if (side > 0 ? !(estimate >= current) : !(estimate <= current)) estimate = current;
+        candidates.push_back({estimate, f});
+        return true;
+      });
+  std::sort(candidates.begin(), candidates.end(), [&](const Candidate& x, const Candidate& y) {
+    if (x.estimate != y.estimate) return side > 0 ? x.estimate < y.estimate : x.estimate > y.estimate;
+    return x.face < y.face;
+  });
+
+  // Keys increase in the direction of motion.
+  auto key = [&](double t) { return side * ordered_key(t); };
+  auto value = [&](std::int64_t k) { return from_ordered_key(side * k); };
+  double best = limit;
+  for (const Candidate& cand : candidates) {
+    const Box3& fb = m.boxes[static_cast<std::size_t>(cand.face)];
+    // The face can only meet the open box at `best` if it reaches below it.
+    if (side > 0 ? !(fb.min[dim] < best) : !(fb.max[dim] > best)) continue;
+    if (!m.meets(cand.face, box_at(best))) continue;
+    // Largest t in [current, best) with no contact: lo never meets (the box
+    // at `current` is valid), hi meets; gallop from the estimate, then bisect.
+    std::int64_t lo = key(current);
+    std::int64_t hi = key(best);
+    auto meets_key = [&](std::int64_t k) { return m.meets(cand.face, box_at(value(k))); };
+    std::int64_t guess = std::clamp(key(cand.estimate), lo, hi);
+    if (guess > lo && guess < hi) {
+      if (meets_key(guess)) {
+        hi = guess;
+        for (std::int64_t step = 1; hi - lo > 1; step *= 2) {
+          const std::int64_t probe = hi - step;
+          if (probe <= lo) break;
+          if (meets_key(probe)) {
+            hi = probe;
+          } else {
+            lo = probe;
+            break;
+          }
+        }
+      } else {
+        lo = guess;
+        for (std::int64_t step = 1; hi - lo > 1; step *= 2) {
+          const std::int64_t probe = lo + step;
+          if (probe >= hi) break;
+          if (meets_key(probe)) {
+            hi = probe;
+            break;
+          }
+          lo = probe;
+        }
+      }
+    }
+    while (hi - lo > 1) {
+      const std::int64_t mid = lo + (hi - lo) / 2;
+      if (meets_key(mid))
+        hi = mid;
+      else
+        lo = mid;
+    }
+    best = value(lo);
+  }
+  return best;
+}
+
+bool SolidIndex::is_inside(const Vec3& p) const {
+  const Impl& m = *impl_;
+  // Ray from q = p + (e, e^2, e^3) towards +z.
+  int crossings = 0;
+  // Sign of orient2d(u, w, q) in the xy plane with q_xy = p_xy + (e, e^2).
+  auto edge_sign = [&](const Vec3& u, const Vec3& w) {
+    const int s = det2_sign(w.x(), u.x(), w.y(), u.y(), p.x(), u.x(), p.y(), u.y());
+    if (s != 0) return s;
+    // + (w_x - u_x) e^2 - (w_y - u_y) e
+    const int sy = sign_of_number(u.y() - w.y());
+    if (sy != 0) return sy;
+    return sign_of_number(w.x() - u.x());
+  };
+  m.all_bvh.query(
+      [&](const Box3& node) {
+        return node.min.x() <= p.x() && p.x() <= node.max.x() && node.min.y() <= p.y() && p.y() <= node.max.y() &&
+               node.max.z() >= p.z();
+      },
+      [&](int f) {
+        const Box3& fb = m.boxes[static_cast<std::size_t>(f)];
+        if (!(fb.min.x() <= p.x() && p.x() <= fb.max.x() && fb.min.y() <= p.y() && p.y() <= fb.max.y() &&
+              fb.max.z() >= p.z()))
+          return true;
+        const auto& s = m.normal_signs[static_cast<std::size_t>(f)];
+        const int sz = s[2];
+        if (sz == 0) return true;  // vertical: the perturbed ray misses it
+        const Vec3& a = m.vertex(f, 0);
+        const Vec3& b = m.vertex(f, 1);
+        const Vec3& c = m.vertex(f, 2);
+        if (edge_sign(a, b) != sz || edge_sign(b, c) != sz || edge_sign(c, a) != sz) return true;
+        int o = orient3d_sign(a, b, c, p);
+        if (o == 0) o = s[0] != 0 ? s[0] : (s[1] != 0 ? s[1] : s[2]);
+        if (o * sz < 0) ++crossings;  // q is below the plane: the ray crosses it
+        return true;
+      });
+  return (crossings % 2) == 1;
+}
+
+}  // namespace subfab::detail

@@ -1,0 +1,242 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The CGAL parts of validate_decomposition.h: exact overlap and outside
+// volumes (corefinement on an exact kernel) and the coverage distances
+// (AABB tree on exact predicates). Where the corefinement cannot output a
+// 2-manifold (blocks touching along an edge or at a point), the volumes are
+// measured on Nef polyhedra, which represent non-manifold solids exactly.
+#include <CGAL/AABB_face_graph_triangle_primitive.h>
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Nef_polyhedron_3.h>
+#include <CGAL/boost/graph/convert_nef_polyhedron_to_polygon_mesh.h>
+#include <CGAL/Polygon_mesh_processing/clip.h>
+#include <CGAL/Polygon_mesh_processing/corefinement.h>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "geometry/exact_mesh.h"
+#include "subfab/core/error.h"
+#include "subfab/validate/validate_decomposition.h"
+
+namespace subfab {
+namespace {
+
+namespace PMP = CGAL::Polygon_mesh_processing;
+using detail::ExactMesh;
+
+double mesh_volume(const ExactMesh& m) { return signed_volume(detail::to_double(m)); }
+
+//! CGAL's corefinement needs non-degenerate, self-intersection-free inputs:
+//! refuse degenerate faces here, and ask it to throw (not crash) on
+//! self-intersections near the intersection.
+void require_boolean_input(const Mesh& m, const char* what) {
+  if (const std::size_t n = detail::count_degenerate_faces(m))
+    throw AlgorithmError(std::string(what) + " has " + std::to_string(n) +
+                         " degenerate (zero-area) faces; exact booleans cannot be run on it");
+}
+
+const auto kThrowOnSelfIntersection = CGAL::parameters::throw_on_self_intersection(true);
+
+//! Runs op, turning CGAL's self-intersection exception into an AlgorithmError.
+template <typename Op>
+bool guarded(Op op) {
+  try {
+    return op();
+  } catch (const PMP::Corefinement::Self_intersection_exception&) {
+    throw AlgorithmError("a block self-intersects near the boolean's cut; exact booleans cannot be run on it");
+  }
+}
+
+bool boxes_overlap(const BoundingBox& a, const BoundingBox& b) {
+  return (a.min.array() < b.max.array()).all() && (b.min.array() < a.max.array()).all();
+}
+
+}  // namespace
+
+namespace {
+
+using Nef = CGAL::Nef_polyhedron_3<detail::ExactKernel>;
+
+//! The volume of a regularized Nef polyhedron, exactly (divergence theorem
+//! over its boundary shells, each oriented with the volume on its inside),
+//! then rounded.
+double nef_volume(const Nef& nef) {
+  if (nef.is_empty()) return 0.0;
+  std::vector<detail::ExactPoint> points;
+  std::vector<std::vector<std::size_t>> polygons;
+  CGAL::convert_nef_polyhedron_to_polygon_soup(nef, points, polygons, /*triangulate_all_faces=*/true);
+  detail::ExactKernel::FT six_volume = 0;
+  const detail::ExactPoint origin(0, 0, 0);
+  for (const auto& poly : polygons)
+    for (std::size_t k = 1; k + 1 < poly.size(); ++k)
+      six_volume += CGAL::determinant(points[poly[0]] - origin, points[poly[k]] - origin, points[poly[k + 1]] - origin);
+  return CGAL::to_double(six_volume / 6);
+}
+
+//! vol(a ∩ b) or vol(a \ b) of two exact closed meshes on Nef polyhedra:
+//! slower than the corefinement, but defined when the result is not a
+//! 2-manifold (it is regularized: the lower-dimensional contact is dropped).
+double nef_volume_of(const ExactMesh& a, const ExactMesh& b, NefBoolean op) {
+  const Nef na(a), nb(b);
+  const Nef result = op == NefBoolean::Intersection ? (na * nb) : (na - nb);
+  return std::max(0.0, nef_volume(result.regularization()));
+}
+
+//! vol(x ∩ y) (`intersection`) or vol(x \ y) by CGAL's corefinement, run on
+//! copies (it modifies its inputs); nullopt when the result would not be a
+//! 2-manifold.
+std::optional<double> corefined_volume(const ExactMesh& x, const ExactMesh& y, bool intersection) {
+  ExactMesh x2 = x, y2 = y, out;
+  const bool ok = guarded([&] {
+    return intersection
+               ? PMP::corefine_and_compute_intersection(x2, y2, out, kThrowOnSelfIntersection, kThrowOnSelfIntersection)
+               : PMP::corefine_and_compute_difference(x2, y2, out, kThrowOnSelfIntersection, kThrowOnSelfIntersection);
+  });
+  if (!ok) return std::nullopt;
+  return mesh_volume(out);
+}
+
+//! vol(a ∩ b) of two exact closed meshes. The corefinement first: a ∩ b;
+//! where that is not a 2-manifold (the blocks touch along an edge),
+//! vol(a) - vol(a \ b), else vol(b) - vol(b \ a); when none is, Nef
+//! polyhedra.
+double exact_overlap(const ExactMesh& a, const ExactMesh& b) {
+  if (const auto v = corefined_volume(a, b, true)) return std::max(0.0, *v);
+  if (const auto v = corefined_volume(a, b, false)) return std::max(0.0, mesh_volume(a) - *v);
+  if (const auto v = corefined_volume(b, a, false)) return std::max(0.0, mesh_volume(b) - *v);
+  return nef_volume_of(a, b, NefBoolean::Intersection);
+}
+
+//! m ∩ box, exactly; false when CGAL cannot clip it into a 2-manifold.
+bool clip_to(ExactMesh& m, const BoundingBox& box) {
+  const detail::ExactKernel::Iso_cuboid_3 cuboid(detail::ExactPoint(box.min.x(), box.min.y(), box.min.z()),
+                                                 detail::ExactPoint(box.max.x(), box.max.y(), box.max.z()));
+  return guarded([&] { return PMP::clip(m, cuboid, CGAL::parameters::clip_volume(true)); });
+}
+
+}  // namespace
+
+double blocks_overlap(const Mesh& a, const Mesh& b) {
+  const BoundingBox ba = bounding_box(a), bb = bounding_box(b);
+  if (!boxes_overlap(ba, bb)) return 0.0;
+  require_boolean_input(a, "a block");
+  require_boolean_input(b, "a block");
+  // a ∩ b lies in the common box of their bounding boxes: clip both to it
+  // first (exactly), so the boolean only sees the faces near the contact.
+  // The box is widened by a margin so that no clip plane is a bounding plane
+  // of the other block: each plane then cuts at most one of the two, and no
+  // cut face is coplanar with a face of the other one. (CGAL 5.5's
+  // corefinement crashed, segfault, on two valid clipped pieces whose cut
+  // faces shared a plane: fertility blocks 82 and 114.)
+  BoundingBox common;
+  common.min = ba.min.cwiseMax(bb.min);
+  common.max = ba.max.cwiseMin(bb.max);
+  const double margin = 1e-3 * (common.max - common.min).norm();
+  common.min.array() -= margin;
+  common.max.array() += margin;
+  {
+    ExactMesh ea = detail::to_exact(a), eb = detail::to_exact(b);
+    bool clipped = false;
+    try {
+      clipped = clip_to(ea, common) && clip_to(eb, common);
+    } catch (const AlgorithmError&) {
+      clipped = false;  // fall back to the whole blocks
+    }
+    if (clipped) {
+      if (ea.number_of_faces() == 0 || eb.number_of_faces() == 0) return 0.0;
+      try {
+        return exact_overlap(ea, eb);
+      } catch (const AlgorithmError&) {
+        // CGAL found the clipped pieces self-intersecting (a clip plane through
+        // a block face can leave slivers it refuses): use the whole blocks.
+      }
+    }
+  }
+  return exact_overlap(detail::to_exact(a), detail::to_exact(b));
+}
+
+double nef_boolean_volume(const Mesh& a, const Mesh& b, NefBoolean op) {
+  require_boolean_input(a, "the first solid");
+  require_boolean_input(b, "the second solid");
+  return nef_volume_of(detail::to_exact(a), detail::to_exact(b), op);
+}
+
+double volume_outside(const Mesh& block, const Mesh& solid) {
+  if (!boxes_overlap(bounding_box(block), bounding_box(solid))) return signed_volume(block);
+  require_boolean_input(block, "the block");
+  require_boolean_input(solid, "the input");
+  const ExactMesh eb = detail::to_exact(block), es = detail::to_exact(solid);
+  if (const auto v = corefined_volume(eb, es, false)) return std::max(0.0, *v);
+  if (const auto v = corefined_volume(eb, es, true)) return std::max(0.0, signed_volume(block) - *v);
+  return nef_volume_of(eb, es, NefBoolean::Difference);
+}
+
+CoverageReport surface_coverage(const Mesh& input, const std::vector<const Mesh*>& blocks,
+                                const CoverageOptions& options) {
+  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+  using Tri = K::Triangle_3;
+  using Primitive = CGAL::AABB_triangle_primitive<K, std::vector<Tri>::const_iterator>;
+  using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
+
+  CoverageReport r;
+  r.tolerance = options.tolerance > 0 ? options.tolerance : 1e-5 * bounding_box(input).diagonal();
+  std::vector<Tri> triangles;
+  for (const Mesh* m : blocks)
+    for (const Triangle& t : m->faces) {
+      const Vec3& a = m->vertices[static_cast<std::size_t>(t[0])];
+      const Vec3& b = m->vertices[static_cast<std::size_t>(t[1])];
+      const Vec3& c = m->vertices[static_cast<std::size_t>(t[2])];
+      Tri tri(K::Point_3(a.x(), a.y(), a.z()), K::Point_3(b.x(), b.y(), b.z()), K::Point_3(c.x(), c.y(), c.z()));
+      if (!tri.is_degenerate()) triangles.push_back(tri);
+    }
+  // Samples: every vertex, then area-weighted random points (fixed seed).
+  std::vector<Vec3> samples(input.vertices.begin(), input.vertices.end());
+  std::vector<double> cumulative(input.num_faces());
+  double total = 0.0;
+  for (std::size_t f = 0; f < input.num_faces(); ++f) cumulative[f] = total += face_area(input, f);
+  std::mt19937_64 rng(options.seed);
+  auto uniform = [&rng]() { return static_cast<double>(rng() >> 11) * 0x1.0p-53; };
+  for (std::size_t s = 0; s < options.num_samples && total > 0; ++s) {
+    const double x = uniform() * total;
+    const std::size_t f = static_cast<std::size_t>(
+        std::min<std::ptrdiff_t>(std::upper_bound(cumulative.begin(), cumulative.end(), x) - cumulative.begin(),
+                                 static_cast<std::ptrdiff_t>(input.num_faces()) - 1));
+    double u = uniform(), v = uniform();
+    if (u + v > 1.0) {
+      u = 1.0 - u;
+      v = 1.0 - v;
+    }
+    const Triangle& t = input.faces[f];
+    const Vec3& a = input.vertices[static_cast<std::size_t>(t[0])];
+    const Vec3& b = input.vertices[static_cast<std::size_t>(t[1])];
+    const Vec3& c = input.vertices[static_cast<std::size_t>(t[2])];
+    samples.push_back(a + u * (b - a) + v * (c - a));
+  }
+  r.num_samples = samples.size();
+  if (triangles.empty()) {
+    r.num_uncovered = samples.size();
+    r.max_distance = std::numeric_limits<double>::infinity();
+    if (!samples.empty()) r.worst_point = samples.front();
+    return r;
+  }
+  Tree tree(triangles.begin(), triangles.end());
+  tree.accelerate_distance_queries();
+  for (const Vec3& p : samples) {
+    const double d = std::sqrt(tree.squared_distance(K::Point_3(p.x(), p.y(), p.z())));
+    if (d > r.tolerance) ++r.num_uncovered;
+    if (d > r.max_distance) {
+      r.max_distance = d;
+      r.worst_point = p;
+    }
+  }
+  return r;
+}
+
+}  // namespace subfab

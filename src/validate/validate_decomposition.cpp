@@ -1,0 +1,414 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The checks of a decomposition that need no CGAL (1, 2, 6, 7) and the
+// driver of all seven; the exact booleans and the coverage distances are in
+// validate_booleans.cpp.
+#include "subfab/validate/validate_decomposition.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <numbers>
+#include <string>
+#include <unordered_map>
+#include <utility>
+
+#include "subfab/core/error.h"
+#include "subfab/core/parallel.h"
+#include "subfab/geometry/axis.h"
+
+namespace subfab {
+namespace {
+
+std::string fmt(const char* format, double a, double b = 0.0, double c = 0.0) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf, format, a, b, c);
+  return buf;
+}
+
+void add_failure(CheckReport& report, std::string line) {
+  report.passed = false;
+  ++report.num_failures;
+  if (report.failures.size() < 20) report.failures.push_back(std::move(line));
+}
+
+CheckReport named_check(std::string name) {
+  CheckReport r;
+  r.name = std::move(name);
+  return r;
+}
+
+std::string block_name(std::size_t i) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "block %03zu", i);
+  return buf;
+}
+
+//! Extent [min, max] of u.v over the vertices of `mesh`.
+std::pair<double, double> extent_along(const Mesh& mesh, const Vec3& u) {
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (const Vec3& v : mesh.vertices) {
+    const double h = u.dot(v);
+    lo = std::min(lo, h);
+    hi = std::max(hi, h);
+  }
+  return {lo, hi};
+}
+
+}  // namespace
+
+double overlap_volume_bound(const Mesh& a, const Mesh& b, const Eigen::Matrix3d& frame) {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  if (a.vertices.empty() || b.vertices.empty()) return 0.0;
+  if ((frame.transpose() * frame - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-9) return kInf;
+  const double det = std::abs(frame.determinant());
+  double largest = 0.0;  // largest |coordinate|, for the rounding margin of the dot products
+  for (const Mesh* m : {&a, &b})
+    for (const Vec3& v : m->vertices) largest = std::max(largest, v.cwiseAbs().maxCoeff());
+  double bound = 1.0;
+  for (int k = 0; k < 3; ++k) {
+    const Vec3 u = frame.row(k).transpose();
+    // |fl(u.v) - u.v| <= 3.4e-16 sum |u_i||v_i|: widen every interval by more than that.
+    const double margin = 4e-16 * u.cwiseAbs().sum() * largest;
+    const auto [a_lo, a_hi] = extent_along(a, u);
+    const auto [b_lo, b_hi] = extent_along(b, u);
+    const double width = (std::min(a_hi, b_hi) + margin) - (std::max(a_lo, b_lo) - margin);
+    if (width <= 0.0) return 0.0;
+    bound *= width * (1.0 + 1e-15);
+  }
+  return bound / (det * (1.0 - 1e-12));
+}
+
+SolidReport check_closed_solid(const Mesh& block) {
+  SolidReport r;
+  r.num_faces = block.num_faces();
+  // Directed edge -> count.
+  std::map<std::pair<int, int>, int> directed;
+  for (const Triangle& t : block.faces)
+    for (int k = 0; k < 3; ++k) ++directed[{t[static_cast<std::size_t>(k)], t[static_cast<std::size_t>((k + 1) % 3)]}];
+  for (const auto& [e, count] : directed) {
+    if (count > 1) {
+      ++r.num_non_manifold_edges;
+      continue;
+    }
+    if (directed.find({e.second, e.first}) == directed.end()) ++r.num_boundary_edges;
+  }
+  // Vertex fans: the faces around a vertex must form one cycle through edges.
+  std::vector<std::vector<std::pair<int, int>>> link(block.num_vertices());  // (next, prev) corners
+  for (const Triangle& t : block.faces)
+    for (int k = 0; k < 3; ++k)
+      link[static_cast<std::size_t>(t[static_cast<std::size_t>(k)])].push_back(
+          {t[static_cast<std::size_t>((k + 1) % 3)], t[static_cast<std::size_t>((k + 2) % 3)]});
+  for (const auto& fan : link) {
+    if (fan.empty()) continue;
+    // Walk next -> prev links: each face (a, b) continues with the face whose `a` equals this `b`.
+    std::unordered_map<int, int> next_of;
+    for (const auto& [a, b] : fan) next_of[a] = b;
+    std::size_t steps = 0;
+    int start = fan.front().first, cur = start;
+    do {
+      auto it = next_of.find(cur);
+      if (it == next_of.end()) break;
+      cur = it->second;
+      ++steps;
+    } while (cur != start && steps <= fan.size());
+    if (steps != fan.size() || cur != start) ++r.num_non_manifold_vertices;
+  }
+  for (std::size_t f = 0; f < block.num_faces(); ++f)
+    if (face_normal_scaled(block, f).squaredNorm() == 0.0) ++r.num_degenerate_faces;
+  r.volume = signed_volume(block);
+  return r;
+}
+
+HeightFieldReport check_height_field(const Mesh& block, const Vec3& direction, const HeightFieldOptions& options) {
+  HeightFieldReport r;
+  if (block.vertices.empty()) return r;
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (const Vec3& v : block.vertices) {
+    const double h = v.dot(direction);
+    lo = std::min(lo, h);
+    hi = std::max(hi, h);
+  }
+  r.base = lo;
+  r.height = hi - lo;
+  const double tol = options.plane_tolerance > 0 ? options.plane_tolerance
+                                                 : 1e-9 * std::max(1.0, bounding_box(block).diagonal());
+  for (std::size_t f = 0; f < block.num_faces(); ++f) {
+    const Vec3 n = face_unit_normal(block, f);
+    const double c = n.dot(direction);
+    if (c >= 0.0 || (c >= -options.normal_tolerance && c >= r.steepest_cosine)) continue;
+    bool on_base = true;
+    for (int k = 0; k < 3; ++k)
+      if (std::abs(block.vertices[static_cast<std::size_t>(block.faces[f][static_cast<std::size_t>(k)])].dot(direction) -
+                   lo) > tol)
+        on_base = false;
+    if (on_base) continue;
+    r.steepest_cosine = std::min(r.steepest_cosine, c);
+    if (c >= -options.normal_tolerance) continue;
+    ++r.num_overhang_faces;
+    r.worst_cosine = std::min(r.worst_cosine, c);
+  }
+  return r;
+}
+
+double overhang_angle_deg(double cosine) {
+  return cosine < 0.0 ? std::asin(std::min(1.0, -cosine)) * 180.0 / std::numbers::pi : 0.0;
+}
+
+double height_field_normal_tolerance(double max_overhang_deg) { return 1e-3 + overhang_sine(max_overhang_deg); }
+
+bool is_height_field(const Mesh& block, const Vec3& direction, const HeightFieldOptions& options) {
+  return check_height_field(block, direction, options).ok();
+}
+
+ValidationReport validate_decomposition(const Mesh& input, const std::vector<ValidationBlock>& blocks,
+                                        const ValidationOptions& options) {
+  Progress* progress = options.progress;
+  const double diagonal = bounding_box(input).diagonal();
+  const std::size_t n = blocks.size();
+  ValidationReport report;
+
+  // 1. closed solid
+  CheckReport solid = named_check("closed oriented 2-manifold, positive volume");
+  std::vector<double> volumes(n, 0.0);
+  {
+    StageScope stage(progress, "check: closed solids");
+    std::vector<SolidReport> rs(n);
+    parallel_for(0, n, [&](std::size_t i) { rs[i] = check_closed_solid(blocks[i].mesh); });
+    std::size_t degenerate = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      volumes[i] = rs[i].volume;
+      degenerate += rs[i].num_degenerate_faces;
+      if (!rs[i].ok())
+        add_failure(solid, block_name(i) + ": " + std::to_string(rs[i].num_boundary_edges) + " boundary edges, " +
+                               std::to_string(rs[i].num_non_manifold_edges) + " non-manifold edges, " +
+                               std::to_string(rs[i].num_non_manifold_vertices) + " non-manifold vertices, volume " +
+                               fmt("%.6g", rs[i].volume));
+    }
+    if (n == 0) add_failure(solid, "the decomposition has no blocks");
+    solid.summary = std::to_string(n) + " blocks, " + std::to_string(degenerate) + " zero-area faces";
+  }
+  report.checks.push_back(solid);
+
+  // 2. height field
+  const std::string tolerance =
+      options.normal_tolerance == 1e-3 ? std::string("1e-3") : fmt("%.4g", options.normal_tolerance);
+  CheckReport height = named_check("height field (overhang cosine < -" + tolerance + " only on the base)");
+  std::vector<HeightFieldReport> hf(n);
+  {
+    StageScope stage(progress, "check: height fields");
+    HeightFieldOptions hopt;
+    hopt.normal_tolerance = options.normal_tolerance;
+    hopt.plane_tolerance = 1e-9 * std::max(1.0, diagonal);
+    parallel_for(0, n, [&](std::size_t i) { hf[i] = check_height_field(blocks[i].mesh, blocks[i].direction, hopt); });
+    double worst = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      worst = std::min(worst, hf[i].steepest_cosine);
+      if (!hf[i].ok())
+        add_failure(height, block_name(i) + ": " + std::to_string(hf[i].num_overhang_faces) +
+                                " faces face away from the milling direction off the base (worst cosine " +
+                                fmt("%.4f", hf[i].worst_cosine) + ")");
+    }
+    height.summary = "worst off-base cosine " + fmt("%.4g", worst) + " (" + fmt("%.2f", overhang_angle_deg(worst)) +
+                     " deg past vertical)";
+  }
+  report.checks.push_back(height);
+
+  // 3. overlaps (exact booleans, only pairs whose boxes overlap)
+  CheckReport overlap = named_check("no overlaps (volume <= 1e-6 of the smaller block)");
+  {
+    StageScope stage(progress, "check: overlaps");
+    std::vector<BoundingBox> boxes(n);
+    for (std::size_t i = 0; i < n; ++i) boxes[i] = bounding_box(blocks[i].mesh);
+    std::vector<std::pair<std::size_t, std::size_t>> pairs;
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = i + 1; j < n; ++j)
+        if ((boxes[i].min.array() < boxes[j].max.array()).all() && (boxes[j].min.array() < boxes[i].max.array()).all())
+          pairs.emplace_back(i, j);
+    std::vector<double> vol(pairs.size(), 0.0);
+    std::vector<char> bounded(pairs.size(), 0);  // settled by overlap_volume_bound(), no boolean
+    std::vector<std::string> errors(pairs.size());
+    std::atomic<std::size_t> done{0};
+    parallel_for(0, pairs.size(), [&](std::size_t p) {
+      const ValidationBlock& a = blocks[pairs[p].first];
+      const ValidationBlock& b = blocks[pairs[p].second];
+      // A rigorous bound in the input frame or either block's machine frame
+      // (the canonical frame, where blocks meet on axis-aligned planes).
+      double bound = overlap_volume_bound(a.mesh, b.mesh, Eigen::Matrix3d::Identity());
+      bound = std::min(bound, overlap_volume_bound(a.mesh, b.mesh, a.machine_transform.topLeftCorner<3, 3>()));
+      bound = std::min(bound, overlap_volume_bound(a.mesh, b.mesh, b.machine_transform.topLeftCorner<3, 3>()));
+      const double smaller = std::min(std::abs(volumes[pairs[p].first]), std::abs(volumes[pairs[p].second]));
+      if (bound <= options.overlap_tolerance * smaller) {
+        vol[p] = bound;
+        bounded[p] = 1;
+      } else {
+        try {
+          vol[p] = blocks_overlap(a.mesh, b.mesh);
+        } catch (const std::exception& e) {
+          errors[p] = e.what();
+        }
+      }
+      if (progress) progress->update(++done, pairs.size());
+    });
+    double worst = 0.0, worst_bound = 0.0;
+    std::size_t num_bounded = 0;
+    for (std::size_t p = 0; p < pairs.size(); ++p) {
+      const auto [i, j] = pairs[p];
+      const std::string who = block_name(i) + " and " + block_name(j);
+      if (!errors[p].empty()) {
+        add_failure(overlap, who + ": boolean failed: " + errors[p]);
+        continue;
+      }
+      const double smaller = std::max(std::min(std::abs(volumes[i]), std::abs(volumes[j])), 1e-300);
+      const double ratio = vol[p] / smaller;
+      if (bounded[p]) {
+        ++num_bounded;
+        worst_bound = std::max(worst_bound, ratio);
+        continue;
+      }
+      worst = std::max(worst, ratio);
+      if (ratio > options.overlap_tolerance)
+        add_failure(overlap, who + " overlap by " + fmt("%.6g", vol[p]) + " (" + fmt("%.3g", ratio) +
+                                 " of the smaller)");
+    }
+    overlap.summary = std::to_string(pairs.size()) + " pairs with overlapping bounding boxes: " +
+                      std::to_string(num_bounded) + " bounded by their slabs (ratio <= " + fmt("%.3g", worst_bound) +
+                      "), " + std::to_string(pairs.size() - num_bounded) + " exact, worst ratio " + fmt("%.3g", worst);
+  }
+  report.checks.push_back(overlap);
+
+  // 4. inside the input
+  CheckReport inside = named_check("inside the input (volume outside <= 1e-6 of the block)");
+  {
+    StageScope stage(progress, "check: inside the input");
+    std::vector<double> out(n, 0.0);
+    std::vector<std::string> errors(n);
+    std::atomic<std::size_t> done{0};
+    parallel_for(0, n, [&](std::size_t i) {
+      try {
+        out[i] = volume_outside(blocks[i].mesh, input);
+      } catch (const std::exception& e) {
+        errors[i] = e.what();
+      }
+      if (progress) progress->update(++done, n);
+    });
+    double worst = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!errors[i].empty()) {
+        add_failure(inside, block_name(i) + ": boolean failed: " + errors[i]);
+        continue;
+      }
+      const double ratio = out[i] / std::max(std::abs(volumes[i]), 1e-300);
+      worst = std::max(worst, ratio);
+      if (ratio > options.outside_tolerance)
+        add_failure(inside, block_name(i) + ": " + fmt("%.6g", out[i]) + " outside the input (" +
+                                fmt("%.3g", ratio) + " of the block)");
+    }
+    inside.summary = "worst ratio outside " + fmt("%.3g", worst);
+  }
+  report.checks.push_back(inside);
+
+  // 5. coverage
+  CheckReport coverage = named_check("surface coverage (samples within 1e-5 x diagonal of a block)");
+  {
+    StageScope stage(progress, "check: coverage");
+    std::vector<const Mesh*> meshes;
+    for (const auto& b : blocks) meshes.push_back(&b.mesh);
+    CoverageOptions copt;
+    copt.num_samples = options.num_coverage_samples;
+    copt.tolerance = options.coverage_tolerance * diagonal;
+    const CoverageReport c = surface_coverage(input, meshes, copt);
+    coverage.summary = std::to_string(c.num_samples) + " samples, max distance " +
+                       fmt("%.3g", c.max_distance / std::max(diagonal, 1e-300)) + " x diagonal";
+    if (!c.ok())
+      add_failure(coverage, std::to_string(c.num_uncovered) + " samples uncovered; worst at (" +
+                                fmt("%.6g, %.6g, %.6g", c.worst_point.x(), c.worst_point.y(), c.worst_point.z()) +
+                                ")");
+  }
+  report.checks.push_back(coverage);
+
+  // 6. limits
+  CheckReport limits = named_check("height and machine limits");
+  {
+    const double slack = options.limit_tolerance * diagonal;
+    double tallest = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      tallest = std::max(tallest, hf[i].height);
+      if (hf[i].height > options.limits.max_height + slack)
+        add_failure(limits, block_name(i) + ": height " + fmt("%.6g", hf[i].height) + " > limit " +
+                                fmt("%.6g", options.limits.max_height));
+      if (options.limits.machine) {
+        // Extent in the machine frame (from the machine transform's rotation).
+        const Eigen::Matrix3d rot = blocks[i].machine_transform.topLeftCorner<3, 3>();
+        BoundingBox bb;
+        for (const Vec3& v : blocks[i].mesh.vertices) bb.extend(rot * v);
+        const Vec3 size = bb.size();
+        const Vec3& m = *options.limits.machine;
+        const bool fits = size.z() <= m.z() + slack &&
+                          ((size.x() <= m.x() + slack && size.y() <= m.y() + slack) ||
+                           (size.x() <= m.y() + slack && size.y() <= m.x() + slack));
+        if (!fits)
+          add_failure(limits, block_name(i) + ": machine-frame size " +
+                                  fmt("%.6g x %.6g x %.6g", size.x(), size.y(), size.z()) + " exceeds the machine");
+      }
+    }
+    limits.summary = "tallest block " + fmt("%.6g", tallest) +
+                     (std::isfinite(options.limits.max_height) ? ", limit " + fmt("%.6g", options.limits.max_height)
+                                                                 : std::string(", no height limit")) +
+                     (options.limits.machine ? ", machine limit set" : ", no machine limit");
+  }
+  report.checks.push_back(limits);
+
+  // 7. machine meshes
+  CheckReport machine = named_check("machine mesh = block moved rigidly, base on z = 0");
+  {
+    const double tol = options.limit_tolerance * std::max(diagonal, 1e-300);
+    std::size_t checked = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const ValidationBlock& b = blocks[i];
+      if (!b.machine_mesh) {
+        add_failure(machine, block_name(i) + ": no machine mesh");
+        continue;
+      }
+      ++checked;
+      const Eigen::Matrix3d rot = b.machine_transform.topLeftCorner<3, 3>();
+      const Vec3 shift = b.machine_transform.topRightCorner<3, 1>();
+      const double orth = (rot.transpose() * rot - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
+      if (orth > 1e-9 || rot.determinant() < 0 || (rot.transpose() * Vec3::UnitZ() - b.direction).norm() > 1e-9) {
+        add_failure(machine, block_name(i) + ": machine transform is not a rotation taking the direction to +Z");
+        continue;
+      }
+      const Mesh& mm = *b.machine_mesh;
+      if (mm.num_faces() != b.mesh.num_faces()) {
+        add_failure(machine, block_name(i) + ": machine mesh has " + std::to_string(mm.num_faces()) +
+                                 " faces, block has " + std::to_string(b.mesh.num_faces()));
+        continue;
+      }
+      double worst = 0.0;
+      for (std::size_t f = 0; f < mm.num_faces(); ++f)
+        for (int k = 0; k < 3; ++k) {
+          const Vec3 p = rot * b.mesh.vertices[static_cast<std::size_t>(b.mesh.faces[f][static_cast<std::size_t>(k)])] + shift;
+          const Vec3& q = mm.vertices[static_cast<std::size_t>(mm.faces[f][static_cast<std::size_t>(k)])];
+          worst = std::max(worst, (p - q).norm());
+        }
+      const BoundingBox bb = bounding_box(mm);
+      const double vol = signed_volume(mm);
+      if (worst > tol)
+        add_failure(machine, block_name(i) + ": machine mesh differs from the moved block by " + fmt("%.3g", worst));
+      else if (std::abs(bb.min.z()) > tol)
+        add_failure(machine, block_name(i) + ": machine base at z = " + fmt("%.6g", bb.min.z()) + ", not 0");
+      else if (std::abs(bb.max.z() - hf[i].height) > tol)
+        add_failure(machine, block_name(i) + ": machine height " + fmt("%.6g", bb.max.z()) + " != block height " +
+                                 fmt("%.6g", hf[i].height));
+      else if (std::abs(vol - volumes[i]) > 1e-5 * std::abs(volumes[i]))
+        add_failure(machine, block_name(i) + ": machine volume " + fmt("%.6g", vol) + " != block volume " +
+                                 fmt("%.6g", volumes[i]));
+    }
+    machine.summary = std::to_string(checked) + " machine meshes compared face by face";
+  }
+  report.checks.push_back(machine);
+  return report;
+}
+
+}  // namespace subfab
