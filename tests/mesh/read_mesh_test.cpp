@@ -73,7 +73,13 @@ TEST(ReadMesh, EveryDataFileHasItsManifestCounts) { expect_matches_manifest(data
 TEST(ReadMesh, AllSharedModelsHaveTheirManifestCounts) {
   if (!test::have_shared_models()) GTEST_SKIP() << "../shared/models is not there";
   const auto rows = test::read_manifest(models_path("MANIFEST.md"));
-  EXPECT_EQ(rows.size(), 30u);
+  // One row per mesh file of the folder (shared/ grows: no fixed count; a
+  // parser that drops rows fails here).
+  std::size_t num_files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(models_path("")))
+    if (entry.is_regular_file() && is_mesh_file(entry.path())) ++num_files;
+  EXPECT_GE(rows.size(), 30u);
+  EXPECT_EQ(rows.size(), num_files);
   expect_matches_manifest(models_path(""));
 }
 
