@@ -10,8 +10,11 @@
 #include <unordered_map>
 
 #include "subfab/core/error.h"
-#include "unfold/exact_poly_mesh.h"
 #include "geometry/hausdorff_distance.h"
+#include "unfold/check_closed_manifold.h"
+#include "unfold/check_no_intersections.h"
+#include "unfold/exact_poly_mesh.h"
+#include "unfold/merge_coplanar_neighbours.h"
 
 namespace subfab {
 
