@@ -17,9 +17,13 @@ namespace subfab::unfold_detail {
 
 //! How far the new vertices of a closed hole may lie from the old surface.
 struct CloseHoleLimits {
-  double max_extension = 0;  // model units: a new vertex lies this close to a deleted facet's vertex; 0 = no limit
-  const detail::SurfaceDistance* reference = nullptr;  // distance to the input surface; null = no limit
-  double max_distance = 0;  // model units: a new vertex lies this close to `reference`
+  //! A new vertex must lie this close to some vertex of the deleted facets
+  //! (model units); 0 = no limit.
+  double max_extension = 0;
+  //! When set, a new vertex must lie within max_distance of this surface
+  //! (the input mesh); null = no limit.
+  const detail::SurfaceDistance* reference = nullptr;
+  double max_distance = 0;  // model units
 };
 
 //! Deletes the facets `region` (ids of alive facets without holes, forming a

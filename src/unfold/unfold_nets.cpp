@@ -17,11 +17,13 @@
 
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
+#include "unfold/edge_key.h"
 #include "unfold/facet_unit_normal.h"
 #include "unfold/polygons_overlap.h"
 
 namespace subfab {
 
+using unfold_detail::edge_key;
 using unfold_detail::facet_unit_normal;
 using unfold_detail::interiors_overlap;
 using unfold_detail::Polygon2;
@@ -30,10 +32,6 @@ using unfold_detail::update_box;
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-
-std::uint64_t key_of(int a, int b) {
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
-}
 
 struct CornerRef {
   int facet, loop, index;
@@ -69,7 +67,7 @@ Context make_context(const PolyMesh& mesh) {
     for (std::size_t l = 0; l < mesh.facets[f].loops.size(); ++l) {
       const auto& loop = mesh.facets[f].loops[l];
       for (std::size_t i = 0; i < loop.size(); ++i)
-        ctx.edges[key_of(loop[i], loop[(i + 1) % loop.size()])] = {f, int(l), int(i)};
+        ctx.edges[edge_key(loop[i], loop[(i + 1) % loop.size()])] = {f, int(l), int(i)};
     }
   ctx.local.resize(nf);
   ctx.normals.resize(nf);
@@ -94,7 +92,7 @@ Context make_context(const PolyMesh& mesh) {
     for (const auto& loop : facet.loops)
       for (std::size_t i = 0; i < loop.size(); ++i) {
         const int u = loop[i], v = loop[(i + 1) % loop.size()];
-        const auto it = ctx.edges.find(key_of(v, u));
+        const auto it = ctx.edges.find(edge_key(v, u));
         if (it == ctx.edges.end())
           throw InvalidMeshError("polygonal mesh is not closed: edge " + std::to_string(u) + "-" + std::to_string(v) +
                                  " of facet " + std::to_string(f) + " has no opposite");
@@ -156,8 +154,8 @@ class Grower {
  private:
   // Places facet c from parent p across the edge u -> v of p.
   Polygon2 place(int p, int c, int u, int v) const {
-    const CornerRef pu = ctx_.edges.at(key_of(u, v));        // corner u in p
-    const CornerRef cv = ctx_.edges.at(key_of(v, u));        // corner v in c (edge v -> u)
+    const CornerRef pu = ctx_.edges.at(edge_key(u, v));  // corner u in p
+    const CornerRef cv = ctx_.edges.at(edge_key(v, u));  // corner v in c (edge v -> u)
     const auto& ploop = layout_.polys[p].loops[pu.loop];
     const Vec2 P_u = ploop[pu.index];
     const Vec2 P_v = ploop[(pu.index + 1) % ploop.size()];
@@ -284,8 +282,8 @@ class Grower {
     for (const auto& [neg_area, t, sf, u, v] : cands) {
       const int tn = layout_.net_of[t];
       // motion taking sf's copy of the edge onto t's copy
-      const CornerRef tu = ctx_.edges.at(key_of(u, v));
-      const CornerRef sv = ctx_.edges.at(key_of(v, u));
+      const CornerRef tu = ctx_.edges.at(edge_key(u, v));
+      const CornerRef sv = ctx_.edges.at(edge_key(v, u));
       const auto& tl = layout_.polys[t].loops[tu.loop];
       const Vec2 T_u = tl[tu.index], T_v = tl[(tu.index + 1) % tl.size()];
       const auto& sl = layout_.polys[sf].loops[sv.loop];
