@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //! \file exact_poly_mesh.h
 //! Private: a PolyMesh with exact rational vertex coordinates (in lattice
-//! units), and the exact predicates facet deletion (thesis Section 3.3.2) and
-//! the polygonal-mesh checks decide validity with: closedness, manifoldness,
-//! simple facets, facet-facet intersection, coplanar neighbours.
+//! units), on which facet deletion (thesis Section 3.3.2) and the
+//! polygonal-mesh checks decide validity exactly. The checks and clean-ups
+//! have their own headers: check_closed_manifold.h (closedness,
+//! manifoldness), check_no_intersections.h (simple facets, facet-facet
+//! intersection), merge_coplanar_neighbours.h (coplanar neighbours).
 //!
 //! All facet normals are lattice directions n in {-1, 0, 1}^3, so a facet's
 //! plane is n.x = c with integer n; with vertices at rational lattice
@@ -14,8 +16,6 @@
 #include <CGAL/Gmpq.h>
 
 #include <array>
-#include <optional>
-#include <string>
 #include <vector>
 
 #include "subfab/unfold/poly_mesh.h"
@@ -76,45 +76,23 @@ Vec3 to_model(const QVec& q, const LatticeFrame& frame);
 //! Adds a point (no deduplication); returns its id.
 int add_point(ExactPolyMesh& mesh, const QVec& q);
 
+//! The axis a facet's 2-D projection drops: its normal's first non-zero one.
+inline int drop_axis(const QFacet& f) {
+  for (int k = 0; k < 3; ++k)
+    if (f.normal[k] != 0) return k;
+  return 2;
+}
+
+//! A point of a facet's plane projected along axis k: (p[k+1], p[k+2]).
+struct P2 {
+  Q u, v;
+};
+
+inline P2 project(const QVec& p, int k) { return {p[(k + 1) % 3], p[(k + 2) % 3]}; }
+
 //! Twice the signed area of a loop, projected along the facet normal's first
 //! non-zero axis, with the sign of "counter-clockwise seen from the normal".
 Q loop_area2(const ExactPolyMesh& mesh, const QFacet& facet, const std::vector<int>& loop);
-
-enum class Where { Outside, Boundary, Inside };
-//! Where a point of the facet's plane lies relative to the facet (exact).
-Where locate_in_facet(const ExactPolyMesh& mesh, const QFacet& facet, const QVec& p);
-
-//! Closed (every directed edge has exactly one opposite), no edge used twice
-//! in the same direction, every vertex a single fan. Returns "" when fine,
-//! otherwise the first problem. Only alive facets count.
-std::string check_closed_manifold(const ExactPolyMesh& mesh);
-
-//! A facet is simple: no repeated vertex, no two of its edges meet except
-//! consecutive ones at their common vertex, all vertices on its plane, outer
-//! loop positive area, holes negative and inside the outer loop.
-std::string check_facet_simple(const ExactPolyMesh& mesh, int f);
-
-//! Two facets intersect only along shared edges and at shared vertices.
-//! Returns "" when fine.
-std::string check_facet_pair(const ExactPolyMesh& mesh, int a, int b);
-
-//! Checks `facets` (ids) against every alive facet whose bounding box
-//! touches theirs; "" when all fine. Pass all ids for a global check.
-std::string check_no_intersections(const ExactPolyMesh& mesh, const std::vector<int>& facets);
-
-//! Merges adjacent facets on the same plane with the same normal
-//! (re-tracing the loops), for every adjacency that involves a facet of
-//! `only` (all facets when `only` is empty). Returns the ids of facets that
-//! changed, or nullopt when a merged region could not be traced (pinched).
-std::optional<std::vector<int>> merge_coplanar_neighbours(ExactPolyMesh& mesh, const std::vector<int>& only = {});
-
-//! Removes vertices where only two facets meet (they lie on a straight edge
-//! between the two). Returns the ids of facets that changed.
-std::vector<int> remove_two_facet_vertices(ExactPolyMesh& mesh);
-
-//! True when some pair of adjacent alive facets lies on one plane with one
-//! normal (should never be after merge_coplanar_neighbours).
-bool has_coplanar_neighbours(const ExactPolyMesh& mesh);
 
 //! Exact area of a facet in model units^2 (approximate: double).
 double facet_area(const ExactPolyMesh& mesh, int f);

@@ -8,13 +8,13 @@
 #include <unordered_map>
 
 #include "subfab/core/error.h"
+#include "unfold/edge_key.h"
 
 namespace subfab {
-namespace {
 
-std::uint64_t edge_key(int a, int b) {
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
-}
+using unfold_detail::edge_key;
+
+namespace {
 
 int find_root(std::vector<int>& parent, int x) {
   while (parent[static_cast<std::size_t>(x)] != x) {

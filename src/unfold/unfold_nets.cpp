@@ -1,4 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
+//! \file unfold_nets.cpp
+//! Cutting a polygonal mesh into nets and laying them flat without overlaps
+//! (thesis Section 3.3.3; outline in subfab/unfold/unfold_nets.h), and the
+//! exact overlap check of the result. The refolding check is in
+//! refold_error.cpp.
 #include "subfab/unfold/unfold_nets.h"
 
 #include <Eigen/Geometry>
@@ -12,11 +17,14 @@
 
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
-#include "subfab/unfold/lattice_directions.h"
+#include "unfold/edge_key.h"
+#include "unfold/facet_unit_normal.h"
 #include "unfold/polygons_overlap.h"
 
 namespace subfab {
 
+using unfold_detail::edge_key;
+using unfold_detail::facet_unit_normal;
 using unfold_detail::interiors_overlap;
 using unfold_detail::Polygon2;
 using unfold_detail::update_box;
@@ -25,25 +33,9 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-std::uint64_t key_of(int a, int b) {
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
-}
-
 struct CornerRef {
   int facet, loop, index;
 };
-
-Vec3 facet_unit_normal(const PolyMesh& mesh, int f) {
-  const Facet& facet = mesh.facets[f];
-  if (facet.normal >= 0 && facet.normal < 26) {
-    const auto& d = lattice_directions()[facet.normal];
-    return Vec3(d[0], d[1], d[2]).normalized();
-  }
-  Vec3 n = Vec3::Zero();
-  const auto& l = facet.loops[0];
-  for (std::size_t i = 0; i < l.size(); ++i) n += mesh.vertices[l[i]].cross(mesh.vertices[l[(i + 1) % l.size()]]);
-  return n.normalized();
-}
 
 double polygon_area(const std::vector<std::vector<Vec2>>& loops) {
   double a = 0;
@@ -75,7 +67,7 @@ Context make_context(const PolyMesh& mesh) {
     for (std::size_t l = 0; l < mesh.facets[f].loops.size(); ++l) {
       const auto& loop = mesh.facets[f].loops[l];
       for (std::size_t i = 0; i < loop.size(); ++i)
-        ctx.edges[key_of(loop[i], loop[(i + 1) % loop.size()])] = {f, int(l), int(i)};
+        ctx.edges[edge_key(loop[i], loop[(i + 1) % loop.size()])] = {f, int(l), int(i)};
     }
   ctx.local.resize(nf);
   ctx.normals.resize(nf);
@@ -100,7 +92,7 @@ Context make_context(const PolyMesh& mesh) {
     for (const auto& loop : facet.loops)
       for (std::size_t i = 0; i < loop.size(); ++i) {
         const int u = loop[i], v = loop[(i + 1) % loop.size()];
-        const auto it = ctx.edges.find(key_of(v, u));
+        const auto it = ctx.edges.find(edge_key(v, u));
         if (it == ctx.edges.end())
           throw InvalidMeshError("polygonal mesh is not closed: edge " + std::to_string(u) + "-" + std::to_string(v) +
                                  " of facet " + std::to_string(f) + " has no opposite");
@@ -162,8 +154,8 @@ class Grower {
  private:
   // Places facet c from parent p across the edge u -> v of p.
   Polygon2 place(int p, int c, int u, int v) const {
-    const CornerRef pu = ctx_.edges.at(key_of(u, v));        // corner u in p
-    const CornerRef cv = ctx_.edges.at(key_of(v, u));        // corner v in c (edge v -> u)
+    const CornerRef pu = ctx_.edges.at(edge_key(u, v));  // corner u in p
+    const CornerRef cv = ctx_.edges.at(edge_key(v, u));  // corner v in c (edge v -> u)
     const auto& ploop = layout_.polys[p].loops[pu.loop];
     const Vec2 P_u = ploop[pu.index];
     const Vec2 P_v = ploop[(pu.index + 1) % ploop.size()];
@@ -290,8 +282,8 @@ class Grower {
     for (const auto& [neg_area, t, sf, u, v] : cands) {
       const int tn = layout_.net_of[t];
       // motion taking sf's copy of the edge onto t's copy
-      const CornerRef tu = ctx_.edges.at(key_of(u, v));
-      const CornerRef sv = ctx_.edges.at(key_of(v, u));
+      const CornerRef tu = ctx_.edges.at(edge_key(u, v));
+      const CornerRef sv = ctx_.edges.at(edge_key(v, u));
       const auto& tl = layout_.polys[t].loops[tu.loop];
       const Vec2 T_u = tl[tu.index], T_v = tl[(tu.index + 1) % tl.size()];
       const auto& sl = layout_.polys[sf].loops[sv.loop];
@@ -435,63 +427,6 @@ std::string find_net_overlap(const Unfolding& unfolding) {
           return "facets " + std::to_string(net.facets[i]) + " and " + std::to_string(net.facets[j]) +
                  " overlap in their net";
   return "";
-}
-
-double refold_error(const PolyMesh& mesh, const Unfolding& unfolding) {
-  const int nf = static_cast<int>(mesh.facets.size());
-  std::vector<Eigen::Affine3d> placed(nf, Eigen::Affine3d::Identity());
-  std::vector<char> done(nf, 0);
-  auto corner2d = [&](int f, int v) -> Vec2 {
-    for (std::size_t l = 0; l < mesh.facets[f].loops.size(); ++l)
-      for (std::size_t i = 0; i < mesh.facets[f].loops[l].size(); ++i)
-        if (mesh.facets[f].loops[l][i] == v) return unfolding.positions[f][l][i];
-    throw AlgorithmError("fold vertex is not a corner of its facet");
-  };
-  double worst = 0;
-  for (const Net& net : unfolding.nets) {
-    // Root: rigid fit from its first two corners and its normal.
-    const int r = net.root;
-    const auto& loop = mesh.facets[r].loops[0];
-    const Vec3 X0 = mesh.vertices[loop[0]], X1 = mesh.vertices[loop[1]];
-    const Vec2 p0 = unfolding.positions[r][0][0], p1 = unfolding.positions[r][0][1];
-    const Vec3 e1 = (X1 - X0).normalized();
-    const Vec3 n = facet_unit_normal(mesh, r);
-    const Vec3 e2 = n.cross(e1);
-    const Vec2 a = (p1 - p0).normalized();
-    Eigen::Matrix3d from, to;
-    from << a.x(), -a.y(), 0, a.y(), a.x(), 0, 0, 0, 1;  // columns: a, a_perp, z
-    to.col(0) = e1;
-    to.col(1) = e2;
-    to.col(2) = n;
-    Eigen::Affine3d T = Eigen::Affine3d::Identity();
-    T.linear() = to * from.transpose();
-    T.translation() = X0 - T.linear() * Vec3(p0.x(), p0.y(), 0);
-    placed[r] = T;
-    done[r] = 1;
-    for (int f : net.facets) {
-      if (f == r) continue;
-      const Fold& fold = unfolding.folds[unfolding.parent_fold[f]];
-      const int p = fold.parent;
-      if (!done[p]) throw AlgorithmError("net facets are not in tree order");
-      const Vec2 q0 = corner2d(p, fold.v0), q1 = corner2d(p, fold.v1);
-      const Vec3 o(q0.x(), q0.y(), 0);
-      const Vec3 axis = Vec3(q1.x() - q0.x(), q1.y() - q0.y(), 0).normalized();
-      const double angle = (180.0 - fold.dihedral_deg) * kPi / 180.0;
-      Eigen::Affine3d rot = Eigen::Translation3d(o) * Eigen::AngleAxisd(angle, axis) * Eigen::Translation3d(-o);
-      placed[f] = placed[p] * rot;
-      done[f] = 1;
-    }
-    for (int f : net.facets)
-      for (std::size_t l = 0; l < mesh.facets[f].loops.size(); ++l)
-        for (std::size_t i = 0; i < mesh.facets[f].loops[l].size(); ++i) {
-          const Vec2& q = unfolding.positions[f][l][i];
-          const Vec3 x = placed[f] * Vec3(q.x(), q.y(), 0);
-          worst = std::max(worst, (x - mesh.vertices[mesh.facets[f].loops[l][i]]).norm());
-        }
-  }
-  for (int f = 0; f < nf; ++f)
-    if (!done[f]) throw AlgorithmError("facet " + std::to_string(f) + " is in no net");
-  return worst;
 }
 
 }  // namespace subfab
