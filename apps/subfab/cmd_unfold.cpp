@@ -18,6 +18,7 @@
 #include "subfab/mesh/read_mesh.h"
 #include "subfab/unfold/export_unfolding.h"
 #include "subfab/unfold/simplify_unfoldable.h"
+#include "subfab/unfold/unfold_summary_to_json.h"
 
 namespace subfab::cli {
 namespace {
@@ -104,11 +105,7 @@ int run_unfold(const UnfoldArgs& args) {
     j["output"] = args.outdir;
     j["spacing"] = result.spacing;
     j["min_facet_area"] = result.min_facet_area;
-    j["facets_mc"] = s.facets_mc;
-    j["facets_after_masks"] = s.facets_after_masks;
-    j["facets_final"] = s.facets_final;
-    j["nets"] = s.nets;
-    j["hausdorff"] = s.hausdorff;
+    j.update(unfold_summary_to_json(s));  // facets_mc ... hausdorff
     j["hausdorff_over_spacing"] = result.spacing > 0 ? s.hausdorff / result.spacing : 0.0;
     j["hausdorff_after_masks"] = result.hausdorff_after_masks;
     j["refold_error"] = result.refold_error;
