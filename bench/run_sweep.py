@@ -19,7 +19,6 @@ Usage: bench/run_sweep.py [--subfab build/subfab] [--out DIR] [--threads N]
 Long (tens of minutes): never run from the test suite. Models run one at a time.
 """
 import argparse
-import csv
 import datetime
 import json
 import os
@@ -28,8 +27,8 @@ import subprocess
 import sys
 import time
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(HERE)
+import bench_common
+from bench_common import ROOT, add_common_arguments, table_4_1_rows
 
 # The steepest face of the thesis's own published blocks per run, degrees past
 # vertical (../shared/notes/reference-implementation.md, "What its published
@@ -42,8 +41,8 @@ CHECK_NAMES = ["solid", "hfield", "overlap", "inside", "cover", "limits", "machi
 
 
 def peak_rss_mb(stderr_text):
-    m = re.search(r"Maximum resident set size \(kbytes\): (\d+)", stderr_text)
-    return round(int(m.group(1)) / 1024.0) if m else None
+    mb = bench_common.peak_rss_mb(stderr_text)
+    return None if mb is None else round(mb)
 
 
 def last_error_line(stderr_text):
@@ -73,19 +72,14 @@ def manifest_models(models_dir):
 
 def collect_runs(args):
     """The runs of the sweep: dicts with name, file, options, expect ("valid" or "refused")."""
-    runs, table_files = [], set()
-    with open(args.csv) as f:
-        for row in csv.DictReader(f):
-            if not row["file"] or not os.path.exists(os.path.join(args.models, row["file"])):
-                continue
-            table_files.add(row["file"])
-            if "no pruning" in row["model"]:
-                continue  # same input and setting as "Cube Spike"; only the thesis's timing differs
-            h = row["max_height_frac"]
-            opts = [] if h in ("inf", "") else ["--max-height", h]
-            runs.append({"name": row["model"], "file": row["file"], "options": opts, "expect": "valid",
+    runs = []
+    rows, table_files = table_4_1_rows(args.csv, args.models)
+    for row in rows:
+        h = row["max_height_frac"]
+        opts = [] if h in ("inf", "") else ["--max-height", h]
+        runs.append({"name": row["model"], "file": row["file"], "options": opts, "expect": "valid",
                      "settings": " ".join(opts) or "default",
-                         "thesis_blocks": int(row["blocks"]), "thesis_total_s": float(row["total_s"])})
+                     "thesis_blocks": int(row["blocks"]), "thesis_total_s": float(row["total_s"])})
     for file, good in manifest_models(args.models):
         if file in table_files:
             continue
@@ -204,11 +198,7 @@ def table(results):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--subfab", default=os.path.join(ROOT, "build", "subfab"))
-    ap.add_argument("--models", default=os.path.join(ROOT, "..", "shared", "models"))
-    ap.add_argument("--csv", default=os.path.join(ROOT, "..", "shared", "benchmarks", "paper_table_4_1.csv"))
-    ap.add_argument("--out", default=os.path.join(ROOT, "out", "sweep"))
-    ap.add_argument("--threads", type=int, default=0)
+    add_common_arguments(ap, "sweep", with_csv=True)
     ap.add_argument("--only", nargs="*", help="run only these (model name, file or file stem; case-insensitive)")
     ap.add_argument("--skip", nargs="*", help="do not run these (same matching as --only)")
     ap.add_argument("--json-out", default=None, help="write the rows here (default OUT/sweep.json)")

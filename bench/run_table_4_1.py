@@ -11,7 +11,6 @@ Usage: bench/run_table_4_1.py [--subfab build/subfab] [--models DIR] [--csv FILE
 Long (minutes): never run from the test suite.
 """
 import argparse
-import csv
 import json
 import math
 import os
@@ -20,35 +19,18 @@ import subprocess
 import sys
 import time
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(HERE)
-
-
-def peak_rss_mb(stderr_text):
-    m = re.search(r"Maximum resident set size \(kbytes\): (\d+)", stderr_text)
-    return int(m.group(1)) / 1024.0 if m else float("nan")
+from bench_common import add_common_arguments, peak_rss_mb, table_4_1_rows
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--subfab", default=os.path.join(ROOT, "build", "subfab"))
-    ap.add_argument("--models", default=os.path.join(ROOT, "..", "shared", "models"))
-    ap.add_argument("--csv", default=os.path.join(ROOT, "..", "shared", "benchmarks", "paper_table_4_1.csv"))
-    ap.add_argument("--out", default=os.path.join(ROOT, "out", "bench"))
-    ap.add_argument("--threads", type=int, default=0)
+    add_common_arguments(ap, "bench", with_csv=True)
     ap.add_argument("--only", nargs="*", help="run only these model names (as in the CSV, case-insensitive)")
     args = ap.parse_args()
 
-    rows = []
-    with open(args.csv) as f:
-        for row in csv.DictReader(f):
-            if not row["file"] or not os.path.exists(os.path.join(args.models, row["file"])):
-                continue
-            if "no pruning" in row["model"]:
-                continue  # the same input and setting as "Cube Spike"; only the thesis's timing differs
-            if args.only and row["model"].lower() not in [o.lower() for o in args.only]:
-                continue
-            rows.append(row)
+    rows, _ = table_4_1_rows(args.csv, args.models)
+    if args.only:
+        rows = [row for row in rows if row["model"].lower() in [o.lower() for o in args.only]]
 
     header = ("model", "blocks", "thesis", "orient", "field", "grow", "cover", "resolve", "carve", "total",
               "thesis_total", "speedup", "peak_MB", "valid")
@@ -68,6 +50,7 @@ def main():
         p = subprocess.run(cmd, capture_output=True, text=True)
         wall = time.time() - start
         peak = peak_rss_mb(p.stderr)
+        peak = float("nan") if peak is None else peak
         if p.returncode != 0:
             failures += 1
             err = p.stderr.strip().splitlines()

@@ -28,8 +28,8 @@ import subprocess
 import sys
 import time
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(HERE)
+from bench_common import add_common_arguments, peak_rss_mb
+
 MODELS = ["bunny_lowres.off", "spot.obj", "moai.obj", "max_planck.obj", "fandisk.obj"]
 
 
@@ -107,10 +107,7 @@ def check_unfold_json(path):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--subfab", default=os.path.join(ROOT, "build", "subfab"))
-    ap.add_argument("--models", default=os.path.join(ROOT, "..", "shared", "models"))
-    ap.add_argument("--out", default=os.path.join(ROOT, "out", "bench_unfold"))
-    ap.add_argument("--threads", type=int, default=0)
+    add_common_arguments(ap, "bench_unfold", with_csv=False)
     ap.add_argument("--granularity", type=float, default=None)
     ap.add_argument("--only", nargs="*")
     ap.add_argument("--no-masks", action="store_true")
@@ -130,8 +127,8 @@ def main():
         t0 = time.monotonic()
         r = subprocess.run(cmd, capture_output=True, text=True)
         wall = time.monotonic() - t0
-        m = re.search(r"Maximum resident set size \(kbytes\): (\d+)", r.stderr)
-        peak = int(m.group(1)) / 1024.0 if m else float("nan")
+        peak = peak_rss_mb(r.stderr)
+        peak = float("nan") if peak is None else peak
         u = re.search(r"User time \(seconds\): ([0-9.]+)", r.stderr)
         sy = re.search(r"System time \(seconds\): ([0-9.]+)", r.stderr)
         cpu = float(u.group(1)) + float(sy.group(1)) if u and sy else float("nan")

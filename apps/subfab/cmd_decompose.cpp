@@ -3,23 +3,18 @@
 //! decomposition (thesis Chapter 4), written as OUTDIR/decomposition.json,
 //! OUTDIR/blocks/block_NNN.obj (input frame) and OUTDIR/mill/block_NNN.stl
 //! (ready to mill: direction +Z, base on z = 0).
-#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <limits>
-#include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "command.h"
-#include "subfab/checks/require_closed_solid.h"
 #include "subfab/core/error.h"
-#include "subfab/core/parallel.h"
 #include "subfab/decompose/decompose.h"
 #include "subfab/decompose/export_decomposition.h"
-#include "subfab/mesh/read_mesh.h"
 #include "subfab/mesh/write_mesh.h"
 
 namespace subfab::cli {
@@ -49,20 +44,12 @@ Vec3 parse_machine(const std::string& text) {
   while (std::getline(in, part, ',')) parts.push_back(part);
   if (parts.size() != 3) throw fail();
   Vec3 v;
-  for (int k = 0; k < 3; ++k) {
-    std::size_t used = 0;
-    try {
-      v[k] = std::stod(parts[static_cast<std::size_t>(k)], &used);
-    } catch (const std::exception&) {
-      throw fail();
-    }
-    if (used != parts[static_cast<std::size_t>(k)].size() || !(v[k] > 0) || !std::isfinite(v[k])) throw fail();
-  }
+  for (int k = 0; k < 3; ++k)
+    if (!parse_positive_number(parts[static_cast<std::size_t>(k)], v[k])) throw fail();
   return v;
 }
 
 int run_decompose(const DecomposeArgs& args) {
-  ThreadLimit threads(static_cast<std::size_t>(args.common.threads));
   DecomposeOptions options;
   options.max_height_fraction = args.max_height;
   options.max_height_abs = args.max_height_abs;
@@ -75,12 +62,7 @@ int run_decompose(const DecomposeArgs& args) {
 
   ConsoleProgress progress(std::cerr, args.common.quiet, stderr_is_terminal());
   options.progress = &progress;
-  Mesh mesh;
-  {
-    StageScope stage(&progress, "read");
-    mesh = read_mesh(args.mesh);          // IoError / InvalidMeshError: exit 2
-    require_closed_solid(mesh, &progress);  // InvalidMeshError: exit 2, with the reason
-  }
+  const Mesh mesh = read_closed_solid(args.mesh, progress);  // IoError / InvalidMeshError: exit 2
   const DecomposeResult result = decompose(mesh, options);
   std::vector<ExportedBlock> blocks;
   {
@@ -167,50 +149,49 @@ int run_decompose(const DecomposeArgs& args) {
   return kExitOk;
 }
 
-const RegisterCommand kRegisterDecompose({"decompose", 20, [](CLI::App& app) {
-  auto args = std::make_shared<DecomposeArgs>();
-  CLI::App* sub = app.add_subcommand(
-      "decompose",
-      "Split a closed mesh into non-overlapping height-field blocks, each millable in one pass of a "
-      "3-axis machine (thesis Chapter 4). Writes OUTDIR/decomposition.json, OUTDIR/blocks/block_NNN.obj "
-      "(input coordinates) and OUTDIR/mill/block_NNN.stl (milling direction +Z, base on z = 0). "
-      "Creases and spikes that no axis-aligned block can cover in the chosen frame are smoothed locally "
-      "first (deviation capped by --max-deviation and reported; OUTDIR/input_repaired.obj is then what the "
-      "blocks decompose), or refused with --exact. Exit 2 if the mesh is not a closed, manifold, consistently "
-      "oriented solid; exit 3 if no valid decomposition was found.");
-  sub->add_option("MESH", args->mesh, "Input mesh (.obj .off .ply .stl), a closed solid")->required();
-  sub->add_option("-o,--output", args->outdir, "Output folder (created if needed)")->required();
-  sub->add_option("--max-height", args->max_height,
-                  "Maximum block height along its milling direction, as a fraction of the bounding-box "
-                  "diagonal (the 'Height' column of thesis Table 4.1; default: no limit)")
+void add_decompose_options(CLI::App& sub, DecomposeArgs& args) {
+  add_solid_input(sub, args.mesh);
+  add_output_folder(sub, args.outdir);
+  sub.add_option("--max-height", args.max_height,
+                 "Maximum block height along its milling direction, as a fraction of the bounding-box "
+                 "diagonal (the 'Height' column of thesis Table 4.1; default: no limit)")
       ->check(CLI::PositiveNumber);
-  sub->add_option("--max-height-abs", args->max_height_abs,
-                  "Maximum block height in model units (default: no limit; with --max-height the smaller wins)")
+  sub.add_option("--max-height-abs", args.max_height_abs,
+                 "Maximum block height in model units (default: no limit; with --max-height the smaller wins)")
       ->check(CLI::PositiveNumber);
-  sub->add_option("--machine", args->machine,
-                  "Machine work volume X,Y,Z in model units: every block must fit, Z along its milling "
-                  "direction (default: no limit)");
-  sub->add_flag("--no-orient", args->no_orient, "Keep the input frame (skip the orientation search of thesis 4.3.1)");
-  sub->add_flag("--exact", args->exact,
-                "Refuse (exit 3, listing them) when the chosen frame has creases or spikes that no axis-aligned "
-                "height-field block can cover, instead of smoothing them locally (default: repair them, thesis "
-                "4.3.5, and decompose OUTDIR/input_repaired.obj; the deviation is reported)");
-  sub->add_option("--max-deviation", args->max_deviation,
-                  "Cap on the local repair's Hausdorff distance from the input, as a fraction of the "
-                  "bounding-box diagonal (default 0.005); exit 3 if the repair needs more")
+  sub.add_option("--machine", args.machine,
+                 "Machine work volume X,Y,Z in model units: every block must fit, Z along its milling "
+                 "direction (default: no limit)");
+  sub.add_flag("--no-orient", args.no_orient, "Keep the input frame (skip the orientation search of thesis 4.3.1)");
+  sub.add_flag("--exact", args.exact,
+               "Refuse (exit 3, listing them) when the chosen frame has creases or spikes that no axis-aligned "
+               "height-field block can cover, instead of smoothing them locally (default: repair them, thesis "
+               "4.3.5, and decompose OUTDIR/input_repaired.obj; the deviation is reported)");
+  sub.add_option("--max-deviation", args.max_deviation,
+                 "Cap on the local repair's Hausdorff distance from the input, as a fraction of the "
+                 "bounding-box diagonal (default 0.005); exit 3 if the repair needs more")
       ->check(CLI::PositiveNumber);
-  sub->add_option("--max-overhang", args->max_overhang,
-                  "Let block faces lean up to DEG degrees past vertical (default 0: exact height fields). "
-                  "A 3-axis machine cannot cut such faces and leaves material under them (at most their "
-                  "height x tan(DEG) deep), so use it only when that is acceptable, e.g. for the noise of a "
-                  "scanned model; it gives far fewer blocks. The thesis's published blocks lean up to 43 deg.")
+  sub.add_option("--max-overhang", args.max_overhang,
+                 "Let block faces lean up to DEG degrees past vertical (default 0: exact height fields). "
+                 "A 3-axis machine cannot cut such faces and leaves material under them (at most their "
+                 "height x tan(DEG) deep), so use it only when that is acceptable, e.g. for the noise of a "
+                 "scanned model; it gives far fewer blocks. The thesis's published blocks lean up to 43 deg.")
       ->check(CLI::Range(0.0, kMaxOverhangAllowanceDeg));
-  sub->add_option("--grid-factor", args->grid_factor,
-                  "Grid spacing = average edge length x G (default 1; smaller is finer and slower)")
+  sub.add_option("--grid-factor", args.grid_factor,
+                 "Grid spacing = average edge length x G (default 1; smaller is finer and slower)")
       ->check(CLI::PositiveNumber);
-  add_common_options(*sub, args->common);
-  return std::pair<CLI::App*, std::function<int()>>{sub, [args] { return run_decompose(*args); }};
-}});
+}
+
+const RegisterCommand kRegisterDecompose(make_command<DecomposeArgs>(
+    "decompose", 20,
+    "Split a closed mesh into non-overlapping height-field blocks, each millable in one pass of a "
+    "3-axis machine (thesis Chapter 4). Writes OUTDIR/decomposition.json, OUTDIR/blocks/block_NNN.obj "
+    "(input coordinates) and OUTDIR/mill/block_NNN.stl (milling direction +Z, base on z = 0). "
+    "Creases and spikes that no axis-aligned block can cover in the chosen frame are smoothed locally "
+    "first (deviation capped by --max-deviation and reported; OUTDIR/input_repaired.obj is then what the "
+    "blocks decompose), or refused with --exact. Exit 2 if the mesh is not a closed, manifold, consistently "
+    "oriented solid; exit 3 if no valid decomposition was found.",
+    add_decompose_options, run_decompose));
 
 }  // namespace
 }  // namespace subfab::cli

@@ -4,7 +4,6 @@
 //! 2 when the file cannot be read as a mesh at all.
 #include <iomanip>
 #include <iostream>
-#include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
@@ -12,7 +11,6 @@
 #include "command.h"
 #include "subfab/checks/analyze_mesh.h"
 #include "subfab/checks/report_to_json.h"
-#include "subfab/core/parallel.h"
 #include "subfab/mesh/read_mesh.h"
 
 namespace subfab::cli {
@@ -85,7 +83,6 @@ void print_table(const std::string& path, const ReadInfo& read, const MeshReport
 }
 
 int run_info(const InfoArgs& args) {
-  ThreadLimit threads(static_cast<std::size_t>(args.common.threads));
   ReadInfo read;
   const Mesh mesh = read_mesh(args.mesh, &read);  // IoError / InvalidMeshError: exit 2
   const MeshReport report = analyze_mesh(mesh);
@@ -101,17 +98,16 @@ int run_info(const InfoArgs& args) {
   return kExitOk;
 }
 
-const RegisterCommand kRegisterInfo({"info", 10, [](CLI::App& app) {
-  auto args = std::make_shared<InfoArgs>();
-  CLI::App* sub = app.add_subcommand(
-      "info",
-      "Print a mesh's measures (counts, bounding box, area, volume, components, genus) and the "
-      "result of every input check. Exit 0 even when checks fail (they are listed); 2 when the "
-      "file cannot be read as a mesh.");
-  sub->add_option("MESH", args->mesh, "Mesh file (.obj .off .ply .stl)")->required();
-  add_common_options(*sub, args->common);
-  return std::pair<CLI::App*, std::function<int()>>{sub, [args] { return run_info(*args); }};
-}});
+void add_info_options(CLI::App& sub, InfoArgs& args) {
+  sub.add_option("MESH", args.mesh, "Mesh file (.obj .off .ply .stl)")->required();
+}
+
+const RegisterCommand kRegisterInfo(make_command<InfoArgs>(
+    "info", 10,
+    "Print a mesh's measures (counts, bounding box, area, volume, components, genus) and the "
+    "result of every input check. Exit 0 even when checks fail (they are listed); 2 when the "
+    "file cannot be read as a mesh.",
+    add_info_options, run_info));
 
 }  // namespace
 }  // namespace subfab::cli

@@ -5,13 +5,11 @@
 //! the deviation. Exit 0 on success, 2 when the input is not a usable solid.
 #include <iomanip>
 #include <iostream>
-#include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 
 #include "command.h"
-#include "subfab/core/parallel.h"
 #include "subfab/core/progress.h"
 #include "subfab/fidelity/smooth_for_decomposition.h"
 #include "subfab/mesh/read_mesh.h"
@@ -34,8 +32,7 @@ std::string number(double x) {
   return out.str();
 }
 
-int run_smooth(SmoothArgs& args) {
-  ThreadLimit threads(static_cast<std::size_t>(args.common.threads));
+int run_smooth(const SmoothArgs& args) {
   ConsoleProgress progress(std::cerr, args.common.quiet, stderr_is_terminal());
   SmoothOptions options = args.options;
   options.weights = args.weights == "cotangent" ? TaubinWeights::Cotangent : TaubinWeights::Uniform;
@@ -100,37 +97,36 @@ int run_smooth(SmoothArgs& args) {
   return kExitOk;
 }
 
-const RegisterCommand kRegisterSmooth({"smooth", 15, [](CLI::App& app) {
-  auto args = std::make_shared<SmoothArgs>();
-  CLI::App* sub = app.add_subcommand(
-      "smooth",
-      "Remove small surface details from a closed mesh with Taubin's lambda/mu low-pass filter (thesis "
-      "Section 4.3.5), so that `subfab decompose` needs fewer blocks. Every vertex stays within "
-      "--max-deviation x bbox diagonal of its input position; the result is checked exactly to be a "
-      "closed, manifold, outward-oriented solid without self-intersections (a vertex whose move would "
-      "break that is put back and frozen). Prints the deviation (Hausdorff, mean) and writes OUT. "
-      "Exit 2 when the input is not a usable solid.");
-  sub->add_option("MESH", args->mesh, "Input mesh (.obj .off .ply .stl), a closed solid")->required();
-  sub->add_option("-o,--output", args->output, "Output mesh file (.obj .off .ply .stl)")->required();
-  sub->add_option("--passes", args->options.num_passes, "Taubin (lambda, mu) passes; more = smoother, up to the cap")
-      ->default_val(args->options.num_passes)
+void add_smooth_options(CLI::App& sub, SmoothArgs& args) {
+  add_solid_input(sub, args.mesh);
+  sub.add_option("-o,--output", args.output, "Output mesh file (.obj .off .ply .stl)")->required();
+  sub.add_option("--passes", args.options.num_passes, "Taubin (lambda, mu) passes; more = smoother, up to the cap")
+      ->default_val(args.options.num_passes)
       ->check(CLI::NonNegativeNumber);
-  sub->add_option("--max-deviation", args->options.max_deviation,
-                  "Cap on each vertex's displacement, fraction of the bbox diagonal (bounds the Hausdorff "
-                  "distance to the input)")
-      ->default_val(args->options.max_deviation)
+  sub.add_option("--max-deviation", args.options.max_deviation,
+                 "Cap on each vertex's displacement, fraction of the bbox diagonal (bounds the Hausdorff "
+                 "distance to the input)")
+      ->default_val(args.options.max_deviation)
       ->check(CLI::Range(0.0, 1.0));
-  sub->add_option("--lambda", args->options.lambda, "Taubin shrink factor, in (0, 1)")
-      ->default_val(args->options.lambda);
-  sub->add_option("--mu", args->options.mu, "Taubin inflate factor, in (-1, -lambda)")->default_val(args->options.mu);
-  sub->add_option("--weights", args->weights,
-                  "Laplacian weights: uniform (Taubin's umbrella operator, stable on any mesh) or cotangent "
-                  "(clamped, moves mostly along the normal)")
-      ->default_val(args->weights)
+  sub.add_option("--lambda", args.options.lambda, "Taubin shrink factor, in (0, 1)")
+      ->default_val(args.options.lambda);
+  sub.add_option("--mu", args.options.mu, "Taubin inflate factor, in (-1, -lambda)")->default_val(args.options.mu);
+  sub.add_option("--weights", args.weights,
+                 "Laplacian weights: uniform (Taubin's umbrella operator, stable on any mesh) or cotangent "
+                 "(clamped, moves mostly along the normal)")
+      ->default_val(args.weights)
       ->check(CLI::IsMember({"uniform", "cotangent"}));
-  add_common_options(*sub, args->common);
-  return std::pair<CLI::App*, std::function<int()>>{sub, [args] { return run_smooth(*args); }};
-}});
+}
+
+const RegisterCommand kRegisterSmooth(make_command<SmoothArgs>(
+    "smooth", 15,
+    "Remove small surface details from a closed mesh with Taubin's lambda/mu low-pass filter (thesis "
+    "Section 4.3.5), so that `subfab decompose` needs fewer blocks. Every vertex stays within "
+    "--max-deviation x bbox diagonal of its input position; the result is checked exactly to be a "
+    "closed, manifold, outward-oriented solid without self-intersections (a vertex whose move would "
+    "break that is put back and frozen). Prints the deviation (Hausdorff, mean) and writes OUT. "
+    "Exit 2 when the input is not a usable solid.",
+    add_smooth_options, run_smooth));
 
 }  // namespace
 }  // namespace subfab::cli

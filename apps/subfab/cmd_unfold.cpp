@@ -3,21 +3,17 @@
 //! V-groove milling (thesis Chapter 3): a polygonal model whose every fold a
 //! V-bit can cut, its nets on sheets (SVG, DXF), a JSON description and a
 //! preview picture.
-#include <cmath>
 #include <iostream>
-#include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "command.h"
-#include "subfab/checks/require_closed_solid.h"
 #include "subfab/core/error.h"
-#include "subfab/core/parallel.h"
-#include "subfab/mesh/read_mesh.h"
 #include "subfab/unfold/export_unfolding.h"
 #include "subfab/unfold/simplify_unfoldable.h"
+#include "subfab/unfold/unfold_summary_to_json.h"
 
 namespace subfab::cli {
 namespace {
@@ -62,20 +58,12 @@ std::pair<double, double> parse_sheet(const std::string& text) {
   if (x == std::string::npos) throw fail();
   double v[2];
   const std::string parts[2] = {text.substr(0, x), text.substr(x + 1)};
-  for (int k = 0; k < 2; ++k) {
-    std::size_t used = 0;
-    try {
-      v[k] = std::stod(parts[k], &used);
-    } catch (const std::exception&) {
-      throw fail();
-    }
-    if (used != parts[k].size() || !(v[k] > 0) || !std::isfinite(v[k])) throw fail();
-  }
+  for (int k = 0; k < 2; ++k)
+    if (!parse_positive_number(parts[k], v[k])) throw fail();
   return {v[0], v[1]};
 }
 
 int run_unfold(const UnfoldArgs& args) {
-  ThreadLimit threads(static_cast<std::size_t>(args.common.threads));
   SimplifyUnfoldableOptions options;
   options.granularity = args.granularity;
   options.min_facet_area = args.min_facet_area;
@@ -87,12 +75,7 @@ int run_unfold(const UnfoldArgs& args) {
   ConsoleProgress progress(std::cerr, args.common.quiet, stderr_is_terminal());
   options.progress = &progress;
   export_options.progress = &progress;
-  Mesh mesh;
-  {
-    StageScope stage(&progress, "read");
-    mesh = read_mesh(args.mesh);            // IoError / InvalidMeshError: exit 2
-    require_closed_solid(mesh, &progress);  // InvalidMeshError: exit 2, with the reason
-  }
+  const Mesh mesh = read_closed_solid(args.mesh, progress);  // IoError / InvalidMeshError: exit 2
   const SimplifyUnfoldableResult result = simplify_unfoldable(mesh, options);
   export_unfolding(result.mesh, result.unfolding, result.summary, args.outdir, export_options);
   if (!args.common.quiet) progress.print_timings(std::cerr);
@@ -104,11 +87,7 @@ int run_unfold(const UnfoldArgs& args) {
     j["output"] = args.outdir;
     j["spacing"] = result.spacing;
     j["min_facet_area"] = result.min_facet_area;
-    j["facets_mc"] = s.facets_mc;
-    j["facets_after_masks"] = s.facets_after_masks;
-    j["facets_final"] = s.facets_final;
-    j["nets"] = s.nets;
-    j["hausdorff"] = s.hausdorff;
+    j.update(unfold_summary_to_json(s));  // facets_mc ... hausdorff
     j["hausdorff_over_spacing"] = result.spacing > 0 ? s.hausdorff / result.spacing : 0.0;
     j["hausdorff_after_masks"] = result.hausdorff_after_masks;
     j["refold_error"] = result.refold_error;
@@ -124,34 +103,33 @@ int run_unfold(const UnfoldArgs& args) {
   return kExitOk;
 }
 
-const RegisterCommand kRegisterUnfold({"unfold", 30, [](CLI::App& app) {
-  auto args = std::make_shared<UnfoldArgs>();
-  CLI::App* sub = app.add_subcommand(
-      "unfold",
-      "Simplify a closed mesh into planar facets whose normals are among the 26 lattice directions, so every "
-      "fold can be cut with a V-bit, and unfold it into nets (thesis Chapter 3). Writes OUTDIR/simplified.obj, "
-      "nets.svg, nets.dxf, unfold.json and preview.png. Exit 2 if the mesh is not a closed, manifold, "
-      "consistently oriented solid.");
-  sub->add_option("MESH", args->mesh, "Input mesh (.obj .off .ply .stl), a closed solid")->required();
-  sub->add_option("-o,--output", args->outdir, "Output folder (created if needed)")->required();
-  sub->add_option("--granularity", args->granularity,
-                  "Grid spacing = average edge length x G (default 2; larger gives fewer, bigger facets)")
+void add_unfold_options(CLI::App& sub, UnfoldArgs& args) {
+  add_solid_input(sub, args.mesh);
+  add_output_folder(sub, args.outdir);
+  sub.add_option("--granularity", args.granularity,
+                 "Grid spacing = average edge length x G (default 2; larger gives fewer, bigger facets)")
       ->check(CLI::PositiveNumber);
-  sub->add_option("--min-facet-area", args->min_facet_area,
-                  "Facets smaller than this (model units^2) are deleted automatically when the hole can be "
-                  "closed (default: 4 x grid spacing^2; 0 disables)")
+  sub.add_option("--min-facet-area", args.min_facet_area,
+                 "Facets smaller than this (model units^2) are deleted automatically when the hole can be "
+                 "closed (default: 4 x grid spacing^2; 0 disables)")
       ->check(CLI::NonNegativeNumber);
-  sub->add_option("--delete-facets", args->delete_facets,
-                  "Comma-separated facet ids to delete as well, as numbered in the output of the same command "
-                  "without this option (nets.svg, unfold.json); adjacent ids are deleted together");
-  sub->add_option("--sheet", args->sheet,
-                  "Sheet size WxH in model units; nets are packed on as many sheets as needed (default: one "
-                  "large sheet)");
-  sub->add_flag("--no-masks", args->no_masks,
-                "Skip the mask stage (thesis 3.3.1, Appendix A): more facets, closer to the input");
-  add_common_options(*sub, args->common);
-  return std::pair<CLI::App*, std::function<int()>>{sub, [args] { return run_unfold(*args); }};
-}});
+  sub.add_option("--delete-facets", args.delete_facets,
+                 "Comma-separated facet ids to delete as well, as numbered in the output of the same command "
+                 "without this option (nets.svg, unfold.json); adjacent ids are deleted together");
+  sub.add_option("--sheet", args.sheet,
+                 "Sheet size WxH in model units; nets are packed on as many sheets as needed (default: one "
+                 "large sheet)");
+  sub.add_flag("--no-masks", args.no_masks,
+               "Skip the mask stage (thesis 3.3.1, Appendix A): more facets, closer to the input");
+}
+
+const RegisterCommand kRegisterUnfold(make_command<UnfoldArgs>(
+    "unfold", 30,
+    "Simplify a closed mesh into planar facets whose normals are among the 26 lattice directions, so every "
+    "fold can be cut with a V-bit, and unfold it into nets (thesis Chapter 3). Writes OUTDIR/simplified.obj, "
+    "nets.svg, nets.dxf, unfold.json and preview.png. Exit 2 if the mesh is not a closed, manifold, "
+    "consistently oriented solid.",
+    add_unfold_options, run_unfold));
 
 }  // namespace
 }  // namespace subfab::cli

@@ -9,7 +9,6 @@
 #include <iomanip>
 #include <iostream>
 #include <limits>
-#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
@@ -17,7 +16,6 @@
 
 #include "command.h"
 #include "subfab/core/error.h"
-#include "subfab/core/parallel.h"
 #include "subfab/geometry/axis.h"
 #include "subfab/validate/validate_decomposition.h"
 #include "subfab/mesh/read_mesh.h"
@@ -88,7 +86,6 @@ std::vector<ValidationBlock> read_decomposition(const fs::path& outdir, Validati
 }
 
 int run_validate(const ValidateArgs& args) {
-  ThreadLimit threads(static_cast<std::size_t>(args.common.threads));
   Mesh input = read_mesh(args.mesh);  // IoError / InvalidMeshError: exit 2
   ValidationOptions options;
   std::optional<RecordedRepair> repair;
@@ -177,27 +174,26 @@ int run_validate(const ValidateArgs& args) {
   return report.passed() ? kExitOk : kExitFailed;
 }
 
-const RegisterCommand kRegisterValidate({"validate", 30, [](CLI::App& app) {
-  auto args = std::make_shared<ValidateArgs>();
-  CLI::App* sub = app.add_subcommand(
-      "validate",
-      "Check a decomposition written by `subfab decompose` against its input: (1) every block a closed, "
-      "oriented 2-manifold with positive volume; (2) a height field along its direction (faces with "
-      "n.d < -1e-3 only on the base); (3) no overlaps (exact, <= 1e-6 of the smaller block); (4) inside "
-      "the input (exact, <= 1e-6 of the block outside); (5) the input surface covered (20000+ samples "
-      "within 1e-5 x diagonal of a block); (6) height and machine limits; (7) machine meshes are the "
-      "blocks moved rigidly. When decompose repaired infeasible features (decomposition.json names "
-      "OUTDIR/input_repaired.obj), checks 4 and 5 use the repaired input and say so, with the recorded "
-      "deviation. Exit 0 if all pass, 3 if one fails, 2 if the files cannot be read.");
-  sub->add_option("MESH", args->mesh, "The input mesh that was decomposed")->required();
-  sub->add_option("OUTDIR", args->outdir, "Folder written by subfab decompose")->required();
-  sub->add_option("--max-overhang", args->max_overhang,
-                  "Overhang allowance of check 2, degrees past vertical (default: the one decompose recorded "
-                  "in decomposition.json, 0 when none; 0 = exact height fields)")
+void add_validate_options(CLI::App& sub, ValidateArgs& args) {
+  sub.add_option("MESH", args.mesh, "The input mesh that was decomposed")->required();
+  sub.add_option("OUTDIR", args.outdir, "Folder written by subfab decompose")->required();
+  sub.add_option("--max-overhang", args.max_overhang,
+                 "Overhang allowance of check 2, degrees past vertical (default: the one decompose recorded "
+                 "in decomposition.json, 0 when none; 0 = exact height fields)")
       ->check(CLI::Range(0.0, kMaxOverhangAllowanceDeg));
-  add_common_options(*sub, args->common);
-  return std::pair<CLI::App*, std::function<int()>>{sub, [args] { return run_validate(*args); }};
-}});
+}
+
+const RegisterCommand kRegisterValidate(make_command<ValidateArgs>(
+    "validate", 30,
+    "Check a decomposition written by `subfab decompose` against its input: (1) every block a closed, "
+    "oriented 2-manifold with positive volume; (2) a height field along its direction (faces with "
+    "n.d < -1e-3 only on the base); (3) no overlaps (exact, <= 1e-6 of the smaller block); (4) inside "
+    "the input (exact, <= 1e-6 of the block outside); (5) the input surface covered (20000+ samples "
+    "within 1e-5 x diagonal of a block); (6) height and machine limits; (7) machine meshes are the "
+    "blocks moved rigidly. When decompose repaired infeasible features (decomposition.json names "
+    "OUTDIR/input_repaired.obj), checks 4 and 5 use the repaired input and say so, with the recorded "
+    "deviation. Exit 0 if all pass, 3 if one fails, 2 if the files cannot be read.",
+    add_validate_options, run_validate));
 
 }  // namespace
 }  // namespace subfab::cli

@@ -1,17 +1,25 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //! \file command.h
 //! How the `subfab` command is put together: every subcommand lives in its
-//! own cmd_<name>.cpp and registers itself with a static RegisterCommand,
-//! so adding one never touches main.cpp.
+//! own cmd_<name>.cpp and registers itself with a static RegisterCommand
+//! built by make_command(), so adding one never touches main.cpp. What the
+//! subcommands share (options, reading a solid, number parsing) is below and
+//! in command.cpp.
 //!
 //! Exit codes (documented in the README and `subfab --help`):
 #pragma once
 
 #include <CLI/CLI.hpp>
 
+#include <cstddef>
 #include <functional>
+#include <memory>
 #include <string>
 #include <utility>
+
+#include "subfab/core/parallel.h"
+#include "subfab/core/progress.h"
+#include "subfab/mesh/mesh.h"
 
 namespace subfab::cli {
 
@@ -51,7 +59,42 @@ struct CommonOptions {
 //! Adds --threads, --quiet and --json to a subcommand.
 void add_common_options(CLI::App& sub, CommonOptions& options);
 
+//! Adds the required MESH argument of a command whose input must be a
+//! closed solid.
+void add_solid_input(CLI::App& sub, std::string& mesh);
+
+//! Adds the required -o,--output OUTDIR option (a folder, created if needed).
+void add_output_folder(CLI::App& sub, std::string& outdir);
+
 //! True when stderr is a terminal (progress bars are drawn only then).
 bool stderr_is_terminal();
+
+//! The spec of a subcommand whose arguments are an `Args` (a struct with a
+//! `CommonOptions common` member): `add_options(sub, args)` adds the
+//! command's own arguments, then --threads, --quiet and --json are added;
+//! after parsing, `run(args)` runs with the --threads limit in force.
+template <typename Args>
+CommandSpec make_command(const std::string& name, int order, const std::string& description,
+                         void (*add_options)(CLI::App&, Args&), int (*run)(const Args&)) {
+  return {name, order, [name, description, add_options, run](CLI::App& app) {
+            auto args = std::make_shared<Args>();
+            CLI::App* sub = app.add_subcommand(name, description);
+            add_options(*sub, *args);
+            add_common_options(*sub, args->common);
+            return std::pair<CLI::App*, std::function<int()>>{sub, [args, run] {
+              ThreadLimit threads(static_cast<std::size_t>(args->common.threads));
+              return run(*args);
+            }};
+          }};
+}
+
+//! Reads the mesh at `path` in a "read" stage and passes it through
+//! require_closed_solid() (an inward mesh is flipped, with a warning).
+//! \throw IoError / InvalidMeshError (exit 2), with the reason.
+Mesh read_closed_solid(const std::string& path, Progress& progress);
+
+//! Parses the whole of `text` as a positive, finite number (std::stod's
+//! syntax) into `value`; false when it is not one.
+bool parse_positive_number(const std::string& text, double& value);
 
 }  // namespace subfab::cli

@@ -2,8 +2,6 @@
 //! subfab: geometry processing for subtractive fabrication (command line).
 //! Thin front end: parses arguments, runs a library algorithm, maps typed
 //! errors to exit codes (see command.h).
-#include <unistd.h>
-
 #include <algorithm>
 #include <iostream>
 #include <new>
@@ -18,19 +16,15 @@ std::vector<CommandSpec>& registry() {
   static std::vector<CommandSpec> commands;
   return commands;
 }
+
+//! Prints "error: <what>" on stderr and returns `exit_code`.
+int report_error(const std::exception& e, int exit_code) {
+  std::cerr << "error: " << e.what() << "\n";
+  return exit_code;
+}
 }  // namespace
 
 RegisterCommand::RegisterCommand(CommandSpec spec) { registry().push_back(std::move(spec)); }
-
-void add_common_options(CLI::App& sub, CommonOptions& options) {
-  sub.add_option("--threads", options.threads, "Worker threads (0 = all cores); results do not depend on it")
-      ->default_val(0)
-      ->check(CLI::NonNegativeNumber);
-  sub.add_flag("--quiet,-q", options.quiet, "Print only warnings and errors on stderr");
-  sub.add_flag("--json", options.json, "Print a machine-readable summary as JSON on stdout");
-}
-
-bool stderr_is_terminal() { return isatty(STDERR_FILENO) == 1; }
 
 }  // namespace subfab::cli
 
@@ -62,17 +56,13 @@ int main(int argc, char** argv) {
       if (sub->parsed()) return run();
     return kExitUsage;
   } catch (const subfab::InvalidArgumentError& e) {
-    std::cerr << "error: " << e.what() << "\n";
-    return kExitUsage;
+    return report_error(e, kExitUsage);
   } catch (const subfab::IoError& e) {
-    std::cerr << "error: " << e.what() << "\n";
-    return kExitBadInput;
+    return report_error(e, kExitBadInput);
   } catch (const subfab::InvalidMeshError& e) {
-    std::cerr << "error: " << e.what() << "\n";
-    return kExitBadInput;
+    return report_error(e, kExitBadInput);
   } catch (const subfab::AlgorithmError& e) {
-    std::cerr << "error: " << e.what() << "\n";
-    return kExitFailed;
+    return report_error(e, kExitFailed);
   } catch (const std::bad_alloc&) {
     std::cerr << "error: out of memory; try a smaller model, a coarser grid or fewer threads\n";
     return kExitFailed;

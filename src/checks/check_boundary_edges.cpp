@@ -32,18 +32,13 @@ CheckResult check_boundary_edges(const Mesh& mesh, const EdgeTopology& topology,
   std::sort(roots.begin(), roots.end());
   roots.erase(std::unique(roots.begin(), roots.end()), roots.end());
 
-  CheckResult result;
-  result.name = "boundary_edges";
-  result.status = CheckStatus::Failed;
-  result.element = CheckElement::Vertex;
-  result.num_offending = num_boundary;
-  result.num_groups = roots.size();
-  result.examples = first_ids(roots, options.max_examples);
   std::ostringstream message;
   message << "the mesh is not closed: " << count_of(num_boundary, "boundary edge", "boundary edges")
           << " in " << count_of(roots.size(), "hole", "holes") << ", e.g. around vertex "
           << roots.front() << "; close the holes before decomposing";
-  result.message = message.str();
+  CheckResult result = failed_result("boundary_edges", CheckElement::Vertex, num_boundary,
+                                     first_ids(roots, options.max_examples), message.str());
+  result.num_groups = roots.size();
   return result;
 }
 

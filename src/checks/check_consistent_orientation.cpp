@@ -95,12 +95,6 @@ CheckResult check_consistent_orientation(const Mesh& mesh, const EdgeTopology& t
                              faces_on_bad_edges.end());
     flipped = std::move(faces_on_bad_edges);
   }
-  CheckResult result;
-  result.name = "consistent_orientation";
-  result.status = CheckStatus::Failed;
-  result.element = CheckElement::Face;
-  result.num_offending = num_bad_edges;
-  result.examples = first_ids(flipped, options.max_examples);
   std::ostringstream message;
   message << "the faces are not consistently oriented: "
           << count_of(num_bad_edges, "edge is", "edges are")
@@ -108,8 +102,8 @@ CheckResult check_consistent_orientation(const Mesh& mesh, const EdgeTopology& t
           << count_of(flipped.size(), "face disagrees", "faces disagree")
           << " with its neighbours, e.g. face " << flipped.front()
           << "; reorient the faces consistently (e.g. MeshLab: Re-Orient all faces coherently)";
-  result.message = message.str();
-  return result;
+  return failed_result("consistent_orientation", CheckElement::Face, num_bad_edges,
+                       first_ids(flipped, options.max_examples), message.str());
 }
 
 }  // namespace checks_detail

@@ -49,19 +49,13 @@ CheckResult check_degenerate_faces(const Mesh& mesh, const CheckOptions& options
     }
   if (bad.empty())
     return passed_result("degenerate_faces", CheckElement::Face, "no face has zero area");
-  CheckResult result;
-  result.name = "degenerate_faces";
-  result.status = CheckStatus::Failed;
-  result.element = CheckElement::Face;
-  result.num_offending = bad.size();
-  result.examples = first_ids(bad, options.max_examples);
   std::ostringstream message;
   message << count_of(bad.size(), "face has", "faces have") << " zero area ("
           << num_repeated << " with a repeated vertex, " << bad.size() - num_repeated
           << " with collinear corners), e.g. face " << bad.front()
           << "; remove or collapse the degenerate faces";
-  result.message = message.str();
-  return result;
+  return failed_result("degenerate_faces", CheckElement::Face, bad.size(),
+                       first_ids(bad, options.max_examples), message.str());
 }
 
 }  // namespace subfab

@@ -36,18 +36,12 @@ CheckResult check_duplicate_faces(const Mesh& mesh, const CheckOptions& options)
     std::sort(t.begin(), t.end());
     first_copy_original = std::lower_bound(keys.begin(), keys.end(), std::make_pair(t, -1))->second;
   }
-  CheckResult result;
-  result.name = "duplicate_faces";
-  result.status = CheckStatus::Failed;
-  result.element = CheckElement::Face;
-  result.num_offending = copies.size();
-  result.examples = first_ids(copies, options.max_examples);
   std::ostringstream message;
   message << count_of(copies.size(), "face repeats", "faces repeat")
           << " the vertices of another face, e.g. face " << copies.front() << " (same as face "
           << first_copy_original << "); remove the duplicate faces";
-  result.message = message.str();
-  return result;
+  return failed_result("duplicate_faces", CheckElement::Face, copies.size(),
+                       first_ids(copies, options.max_examples), message.str());
 }
 
 }  // namespace subfab

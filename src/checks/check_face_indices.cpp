@@ -23,19 +23,13 @@ CheckResult check_face_indices(const Mesh& mesh, const CheckOptions& options) {
   if (bad.empty())
     return passed_result("face_indices", CheckElement::Face,
                          "every face refers to existing vertices");
-  CheckResult result;
-  result.name = "face_indices";
-  result.status = CheckStatus::Failed;
-  result.element = CheckElement::Face;
-  result.num_offending = bad.size();
-  result.examples = first_ids(bad, options.max_examples);
   std::ostringstream message;
   message << count_of(bad.size(), "face refers", "faces refer")
           << " to vertices that do not exist, e.g. face " << bad.front() << " uses vertex "
           << first_index << " (valid: 0 to " << n - 1
           << "); the file is damaged: export it again from the modelling tool";
-  result.message = message.str();
-  return result;
+  return failed_result("face_indices", CheckElement::Face, bad.size(),
+                       first_ids(bad, options.max_examples), message.str());
 }
 
 }  // namespace subfab

@@ -16,18 +16,12 @@ CheckResult check_finite_coordinates(const Mesh& mesh, const CheckOptions& optio
   if (bad.empty())
     return passed_result("finite_coordinates", CheckElement::Vertex,
                          "every vertex coordinate is a finite number");
-  CheckResult result;
-  result.name = "finite_coordinates";
-  result.status = CheckStatus::Failed;
-  result.element = CheckElement::Vertex;
-  result.num_offending = bad.size();
-  result.examples = first_ids(bad, options.max_examples);
   std::ostringstream message;
   message << count_of(bad.size(), "vertex has", "vertices have")
           << " a NaN or infinite coordinate, e.g. vertex " << bad.front()
           << "; the file is damaged: export it again from the modelling tool";
-  result.message = message.str();
-  return result;
+  return failed_result("finite_coordinates", CheckElement::Vertex, bad.size(),
+                       first_ids(bad, options.max_examples), message.str());
 }
 
 }  // namespace subfab

@@ -26,12 +26,6 @@ CheckResult check_non_manifold_edges(const Mesh& mesh, const EdgeTopology& topol
   std::vector<int> faces;
   for (std::size_t k = 0; k < topology.num_uses(first); ++k)
     faces.push_back(topology.use(first, k).face);
-  CheckResult result;
-  result.name = "non_manifold_edges";
-  result.status = CheckStatus::Failed;
-  result.element = CheckElement::Vertex;
-  result.num_offending = bad_edges.size();
-  result.examples = first_ids(vertices, options.max_examples);
   std::ostringstream message;
   message << "the mesh is not manifold: "
           << count_of(bad_edges.size(), "edge is", "edges are")
@@ -39,8 +33,8 @@ CheckResult check_non_manifold_edges(const Mesh& mesh, const EdgeTopology& topol
           << topology.use(first, 0).b << " (faces " << join_ids(first_ids(faces, 6))
           << (faces.size() > 6 ? ", ..." : "")
           << "); separate the parts that meet there or remove the extra faces";
-  result.message = message.str();
-  return result;
+  return failed_result("non_manifold_edges", CheckElement::Vertex, bad_edges.size(),
+                       first_ids(vertices, options.max_examples), message.str());
 }
 
 }  // namespace checks_detail

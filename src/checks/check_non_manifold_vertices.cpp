@@ -49,18 +49,12 @@ CheckResult check_non_manifold_vertices(const Mesh& mesh, const EdgeTopology& to
   if (bad.empty())
     return passed_result("non_manifold_vertices", CheckElement::Vertex,
                          "no pinched vertex: the faces around each vertex form one fan");
-  CheckResult result;
-  result.name = "non_manifold_vertices";
-  result.status = CheckStatus::Failed;
-  result.element = CheckElement::Vertex;
-  result.num_offending = bad.size();
-  result.examples = first_ids(bad, options.max_examples);
   std::ostringstream message;
   message << "the mesh is not manifold: " << count_of(bad.size(), "pinched vertex", "pinched vertices")
           << " (the faces around it form several separate fans), e.g. vertex " << bad.front()
           << "; split the vertex into one per fan or thicken the part that meets there";
-  result.message = message.str();
-  return result;
+  return failed_result("non_manifold_vertices", CheckElement::Vertex, bad.size(),
+                       first_ids(bad, options.max_examples), message.str());
 }
 
 }  // namespace checks_detail

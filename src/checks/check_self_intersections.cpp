@@ -149,20 +149,14 @@ CheckResult check_self_intersections(const Mesh& mesh, const CheckOptions& optio
         faces.push_back(static_cast<int>(x));
   }
   std::sort(faces.begin(), faces.end());
-  CheckResult result;
-  result.name = "self_intersections";
-  result.status = CheckStatus::Failed;
-  result.element = CheckElement::Face;
-  result.num_offending = intersecting.size();
-  result.examples = faces;
   std::ostringstream message;
   message << "the surface intersects itself: "
           << count_of(intersecting.size(), "pair", "pairs") << " of faces intersect, e.g. faces "
           << intersecting.front().first << " and " << intersecting.front().second
           << "; remove the self-intersections (e.g. remesh, or a boolean union of the "
              "overlapping parts)";
-  result.message = message.str();
-  return result;
+  return failed_result("self_intersections", CheckElement::Face, intersecting.size(), faces,
+                       message.str());
 }
 
 }  // namespace subfab

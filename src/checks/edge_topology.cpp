@@ -134,5 +134,17 @@ CheckResult passed_result(std::string name, CheckElement element, std::string me
   return result;
 }
 
+CheckResult failed_result(std::string name, CheckElement element, std::size_t num_offending,
+                          std::vector<int> examples, std::string message) {
+  CheckResult result;
+  result.name = std::move(name);
+  result.status = CheckStatus::Failed;
+  result.element = element;
+  result.num_offending = num_offending;
+  result.examples = std::move(examples);
+  result.message = std::move(message);
+  return result;
+}
+
 }  // namespace checks_detail
 }  // namespace subfab

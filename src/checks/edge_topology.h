@@ -74,6 +74,11 @@ std::string count_of(std::size_t n, std::string_view singular, std::string_view 
 
 //! Result for a passed check.
 CheckResult passed_result(std::string name, CheckElement element, std::string message);
+//! Result for a failed check: `num_offending` offending elements, `examples`
+//! the first few of their ids (ascending), `message` what is wrong and what
+//! to do.
+CheckResult failed_result(std::string name, CheckElement element, std::size_t num_offending,
+                          std::vector<int> examples, std::string message);
 
 // Overloads of the public checks that reuse an EdgeTopology (analyze_mesh).
 CheckResult check_boundary_edges(const Mesh& mesh, const EdgeTopology& topology,

@@ -68,4 +68,14 @@ void require_closed_solid(Mesh& mesh, Progress* progress) {
   throw_if_failed({check_self_intersections(mesh, options)});
 }
 
+void require_closed_solid_result(const Mesh& mesh, const std::string& before,
+                                 const std::string& after) {
+  Mesh check = mesh;
+  try {
+    require_closed_solid(check, nullptr);
+  } catch (const InvalidMeshError& e) {
+    throw AlgorithmError(before + e.what() + after);
+  }
+}
+
 }  // namespace subfab

@@ -151,14 +151,8 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
                            ". Without it: " + infeasible_message(infeasible, input, options.orient));
     }
     Mesh in_input = repaired_in_input_frame(input, result.canonical, repaired.mesh, result.rotation);
-    {
-      Mesh check = in_input;  // the rounding back to the input frame must keep a valid solid
-      try {
-        require_closed_solid(check, nullptr);
-      } catch (const InvalidMeshError& e) {
-        throw AlgorithmError(std::string("the repaired mesh is not a valid solid in the input frame: ") + e.what());
-      }
-    }
+    // The rounding back to the input frame must keep a valid solid.
+    require_closed_solid_result(in_input, "the repaired mesh is not a valid solid in the input frame: ");
     result.repair = repaired.report;
     result.canonical = std::move(repaired.mesh);
     result.num_input_vertices = result.canonical.num_vertices();

@@ -35,22 +35,9 @@ using FaceIndex = SurfaceMesh::Face_index;
 
 Vec3 vec(const Point& p) { return Vec3(p.x(), p.y(), p.z()); }
 
-SurfaceMesh to_surface_mesh(const Mesh& mesh) {
-  SurfaceMesh sm;
-  sm.reserve(static_cast<SurfaceMesh::size_type>(mesh.num_vertices()),
-             static_cast<SurfaceMesh::size_type>(3 * mesh.num_faces() / 2),
-             static_cast<SurfaceMesh::size_type>(mesh.num_faces()));
-  for (const Vec3& v : mesh.vertices) sm.add_vertex(Point(v.x(), v.y(), v.z()));
-  for (std::size_t f = 0; f < mesh.num_faces(); ++f) {
-    const Triangle& t = mesh.faces[f];
-    if (sm.add_face(VertexIndex(static_cast<SurfaceMesh::size_type>(t[0])),
-                    VertexIndex(static_cast<SurfaceMesh::size_type>(t[1])),
-                    VertexIndex(static_cast<SurfaceMesh::size_type>(t[2]))) == SurfaceMesh::null_face())
-      throw InvalidMeshError("face " + std::to_string(f) +
-                             " of a block cannot be added to a halfedge mesh (non-manifold or inconsistently "
-                             "oriented)");
-  }
-  return sm;
+SurfaceMesh to_block_surface_mesh(const Mesh& block) {
+  return detail::to_surface_mesh<SurfaceMesh>(
+      block, " of a block cannot be added to a halfedge mesh (non-manifold or inconsistently oriented)");
 }
 
 //! Back to a plain mesh: surviving vertices in index order, unused ones dropped.
@@ -191,7 +178,7 @@ struct Finished {
 CleanupReport clean_rounded_block(Mesh& block, const Vec3& direction, double tolerance,
                                   const FinalizeOptions& options) {
   CleanupReport report;
-  SurfaceMesh sm = to_surface_mesh(block);
+  SurfaceMesh sm = to_block_surface_mesh(block);
   Cleaner cleaner(sm, direction, tolerance);
   for (int pass = 0; pass < options.max_passes; ++pass) {
     const std::size_t collapsed = cleaner.collapse_short_edges();
@@ -236,7 +223,7 @@ std::string block_defect(const Mesh& block, const Vec3& direction, double diagon
                   hf.num_overhang_faces, hf.worst_cosine);
     return buf;
   }
-  const SurfaceMesh sm = to_surface_mesh(block);
+  const SurfaceMesh sm = to_block_surface_mesh(block);
   if (PMP::does_self_intersect(sm)) {
     std::vector<std::pair<FaceIndex, FaceIndex>> pairs;
     PMP::self_intersections(sm, std::back_inserter(pairs));

@@ -321,15 +321,8 @@ RepairResult repair_infeasible_features(const Mesh& input, const RepairOptions& 
   }
 
   // 3. Still a valid solid?
-  {
-    Mesh check = mesh;
-    try {
-      require_closed_solid(check, nullptr);
-    } catch (const InvalidMeshError& e) {
-      throw AlgorithmError(std::string("repairing the infeasible features produced an invalid solid (") + e.what() +
-                           "); try a smaller edge length or fewer smoothing steps");
-    }
-  }
+  require_closed_solid_result(mesh, "repairing the infeasible features produced an invalid solid (",
+                              "); try a smaller edge length or fewer smoothing steps");
   // 4. Report.
   const std::vector<int> changed_input = detail::faces_not_in(input, mesh);
   const std::vector<int> changed = detail::faces_not_in(mesh, input);

@@ -158,15 +158,8 @@ SmoothResult smooth_for_decomposition(const Mesh& input_mesh, const SmoothOption
   const double smooth_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   // Final exact gate.
-  {
-    Mesh check = mesh;
-    try {
-      require_closed_solid(check, nullptr);
-    } catch (const InvalidMeshError& e) {
-      throw AlgorithmError(std::string("smooth: the smoothed mesh is not a valid solid (") + e.what() +
-                           "); internal error, please report it with the input");
-    }
-  }
+  require_closed_solid_result(mesh, "smooth: the smoothed mesh is not a valid solid (",
+                              "); internal error, please report it with the input");
 
   // Deviation.
   std::vector<char> moved(mesh.vertices.size(), 0);

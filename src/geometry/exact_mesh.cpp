@@ -4,33 +4,15 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #include <algorithm>
-#include <string>
 #include <vector>
-
-#include "subfab/core/error.h"
 
 namespace subfab::detail {
 
 ExactMesh to_exact(const Mesh& mesh) {
-  ExactMesh out;
-  out.reserve(static_cast<ExactMesh::size_type>(mesh.num_vertices()),
-              static_cast<ExactMesh::size_type>(3 * mesh.num_faces() / 2),
-              static_cast<ExactMesh::size_type>(mesh.num_faces()));
-  std::vector<ExactMesh::Vertex_index> vertex(mesh.num_vertices());
-  for (std::size_t i = 0; i < mesh.num_vertices(); ++i) {
-    const Vec3& p = mesh.vertices[i];
-    vertex[i] = out.add_vertex(ExactPoint(p.x(), p.y(), p.z()));
-  }
-  for (std::size_t f = 0; f < mesh.num_faces(); ++f) {
-    const Triangle& t = mesh.faces[f];
-    const auto face = out.add_face(vertex[static_cast<std::size_t>(t[0])], vertex[static_cast<std::size_t>(t[1])],
-                                   vertex[static_cast<std::size_t>(t[2])]);
-    if (face == ExactMesh::null_face())
-      throw InvalidMeshError("face " + std::to_string(f) +
-                             " cannot be added to a halfedge mesh (non-manifold edge or vertex, or "
-                             "inconsistent orientation); repair the mesh first");
-  }
-  return out;
+  return to_surface_mesh<ExactMesh>(
+      mesh,
+      " cannot be added to a halfedge mesh (non-manifold edge or vertex, or "
+      "inconsistent orientation); repair the mesh first");
 }
 
 ExactMesh box_mesh(const Box3& box) {

@@ -10,7 +10,9 @@
 #include <CGAL/Surface_mesh.h>
 
 #include <cstddef>
+#include <string>
 
+#include "subfab/core/error.h"
 #include "subfab/geometry/height_box.h"
 #include "subfab/mesh/mesh.h"
 
@@ -19,6 +21,29 @@ namespace subfab::detail {
 using ExactKernel = CGAL::Exact_predicates_exact_constructions_kernel;
 using ExactPoint = ExactKernel::Point_3;
 using ExactMesh = CGAL::Surface_mesh<ExactPoint>;
+
+//! Builds a CGAL Surface_mesh of any point type (ExactMesh, or one on an
+//! inexact kernel) from a double mesh, coordinates taken as they are:
+//! vertex i and face f of `mesh` are vertex i and face f of the result.
+//! \throw InvalidMeshError "face <f>" + `why_not_added` when a face cannot be
+//!        added (non-manifold edge or vertex, inconsistent orientation).
+template <class SurfaceMesh>
+SurfaceMesh to_surface_mesh(const Mesh& mesh, const std::string& why_not_added) {
+  using Size = typename SurfaceMesh::size_type;
+  using Vertex = typename SurfaceMesh::Vertex_index;
+  SurfaceMesh out;
+  out.reserve(static_cast<Size>(mesh.num_vertices()), static_cast<Size>(3 * mesh.num_faces() / 2),
+              static_cast<Size>(mesh.num_faces()));
+  for (const Vec3& p : mesh.vertices)
+    out.add_vertex(typename SurfaceMesh::Point(p.x(), p.y(), p.z()));
+  for (std::size_t f = 0; f < mesh.num_faces(); ++f) {
+    const Triangle& t = mesh.faces[f];
+    if (out.add_face(Vertex(static_cast<Size>(t[0])), Vertex(static_cast<Size>(t[1])),
+                     Vertex(static_cast<Size>(t[2]))) == SurfaceMesh::null_face())
+      throw InvalidMeshError("face " + std::to_string(f) + why_not_added);
+  }
+  return out;
+}
 
 //! Builds the exact mesh of a double mesh (coordinates are taken exactly).
 //! \throw InvalidMeshError when a face cannot be added (non-manifold input).

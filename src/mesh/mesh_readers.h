@@ -2,7 +2,8 @@
 //! \file mesh_readers.h
 //! Private machinery shared by the format readers (read_obj.cpp, read_off.cpp,
 //! read_ply.cpp, read_stl.cpp) and read_mesh.cpp: error messages that name the
-//! file and the line or byte offset, and allocation-free number parsing.
+//! file and the line or byte offset, allocation-free number parsing, and the
+//! state the text parsers share (TextParser).
 //!
 //! Every reader works on the whole file held in memory (`std::string_view`),
 //! never reads past its end, and appends to a `Mesh` whose face indices are
@@ -13,6 +14,7 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "subfab/core/error.h"
 #include "subfab/mesh/mesh.h"
@@ -82,5 +84,39 @@ std::size_t append_fan(Mesh& mesh, It first, It last) {
   for (std::size_t i = 1; i + 1 < n; ++i) mesh.faces.push_back({first[0], first[i], first[i + 1]});
   return n >= 3 ? n - 2 : 0;
 }
+
+//! What the text-format parsers (OBJ, OFF, ascii STL) keep while they read:
+//! a cursor into the file, the current 1-based line, the mesh and info they
+//! fill, and the corners of the polygon being read.
+class TextParser {
+ public:
+  TextParser(std::string_view data, const std::string& name, Mesh& mesh, ReadInfo& info)
+      : p_(data.data()), end_(data.data() + data.size()), name_(name), mesh_(mesh), info_(info) {}
+
+ protected:
+  //! Throws IoError at the current line.
+  [[noreturn]] void fail_io(const std::string& what) const {
+    throw_io(name_, Location::line(line_), what);
+  }
+
+  //! The token at the cursor, for messages.
+  std::string token_here() const { return token_at(p_, end_); }
+
+  //! Counts the polygon in `corners_` in `info_` and appends its fan
+  //! triangulation to `mesh_`.
+  void add_polygon() {
+    ++info_.polygons_in_file;
+    if (corners_.size() > 3) ++info_.polygons_triangulated;
+    append_fan(mesh_, corners_.begin(), corners_.end());
+  }
+
+  const char* p_;
+  const char* end_;
+  const std::string& name_;
+  Mesh& mesh_;
+  ReadInfo& info_;
+  std::size_t line_ = 1;
+  std::vector<int> corners_;
+};
 
 }  // namespace subfab::detail

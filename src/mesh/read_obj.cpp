@@ -13,10 +13,9 @@
 namespace subfab::detail {
 namespace {
 
-class ObjParser {
+class ObjParser : TextParser {
  public:
-  ObjParser(std::string_view data, const std::string& name, Mesh& mesh, ReadInfo& info)
-      : p_(data.data()), end_(data.data() + data.size()), name_(name), mesh_(mesh), info_(info) {}
+  using TextParser::TextParser;
 
   void parse() {
     mesh_.vertices.reserve(static_cast<std::size_t>(end_ - p_) / 64);
@@ -87,10 +86,6 @@ class ObjParser {
     return p_ == end_ || is_space_or_newline(*p_) || (*p_ == '\\' && continuation_at(p_));
   }
 
-  std::string token_here() const { return token_at(p_, end_); }
-
-  [[noreturn]] void fail_io(const std::string& what) const { throw_io(name_, Location::line(line_), what); }
-
   void parse_vertex() {
     Vec3 p;
     for (int k = 0; k < 3; ++k) {
@@ -150,9 +145,7 @@ class ObjParser {
     if (corners_.size() < 3)
       throw_invalid(name_, Location::line(line_),
                     "face with " + std::to_string(corners_.size()) + " corners (a face needs at least 3)");
-    ++info_.polygons_in_file;
-    if (corners_.size() > 3) ++info_.polygons_triangulated;
-    append_fan(mesh_, corners_.begin(), corners_.end());
+    add_polygon();
   }
 
   void note_unknown(std::string_view key) {
@@ -180,13 +173,6 @@ class ObjParser {
                             first_unknown_ + ")");
   }
 
-  const char* p_;
-  const char* end_;
-  const std::string& name_;
-  Mesh& mesh_;
-  ReadInfo& info_;
-  std::size_t line_ = 1;
-  std::vector<int> corners_;
   std::int64_t max_index_ = -1;
   std::size_t max_index_line_ = 0;
   std::size_t num_polylines_ = 0;

@@ -15,11 +15,9 @@
 namespace subfab::detail {
 namespace {
 
-class OffParser {
+class OffParser : TextParser {
  public:
-  OffParser(std::string_view data, const std::string& name, Mesh& mesh, ReadInfo& info)
-      : p_(data.data()), end_(data.data() + data.size()), name_(name), mesh_(mesh),
-        info_(info) {}
+  using TextParser::TextParser;
 
   void parse() {
     parse_header();
@@ -31,8 +29,6 @@ class OffParser {
   }
 
  private:
-  [[noreturn]] void fail_io(const std::string& what) const { throw_io(name_, Location::line(line_), what); }
-
   //! Skips blanks and comments, not newlines.
   void skip_inline() {
     while (p_ < end_ && is_space(*p_)) ++p_;
@@ -64,8 +60,6 @@ class OffParser {
 
   bool at_line_end() const { return p_ == end_ || *p_ == '\n'; }
   bool at_token_end() const { return p_ == end_ || is_space_or_newline(*p_) || *p_ == '#'; }
-
-  std::string token_here() const { return token_at(p_, end_); }
 
   std::int64_t read_count(const char* what) {
     skip_all();
@@ -187,21 +181,12 @@ class OffParser {
       corners_.push_back(
           checked_index(index, static_cast<std::size_t>(num_vertices_), name_, Location::line(line_)));
     }
-    ++info_.polygons_in_file;
-    if (n > 3) ++info_.polygons_triangulated;
-    append_fan(mesh_, corners_.begin(), corners_.end());
+    add_polygon();
     next_line();  // optional face colour
   }
 
-  const char* p_;
-  const char* end_;
-  const std::string& name_;
-  Mesh& mesh_;
-  ReadInfo& info_;
-  std::size_t line_ = 1;
   std::int64_t num_vertices_ = 0;
   std::int64_t num_faces_ = 0;
-  std::vector<int> corners_;
 };
 
 }  // namespace

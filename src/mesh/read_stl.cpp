@@ -77,28 +77,24 @@ void read_binary(std::string_view data, const std::string& name, Mesh& mesh, Rea
   info.polygons_in_file = n;
 }
 
-class AsciiStlParser {
+class AsciiStlParser : TextParser {
  public:
-  AsciiStlParser(std::string_view data, const std::string& name, Mesh& mesh, ReadInfo& info)
-      : p_(data.data()), end_(data.data() + data.size()), name_(name), mesh_(mesh), info_(info) {}
+  using TextParser::TextParser;
 
   void parse() {
     std::size_t num_solids = 0;
     while (true) {
       const std::string_view word = next_word();
       if (word.empty()) break;
-      if (!keyword_is(word, "solid"))
-        fail("expected 'solid', got " + describe(word));
+      if (!keyword_is(word, "solid")) fail_io("expected 'solid', got " + describe(word));
       ++num_solids;
       skip_rest_of_line();  // the solid's name
       parse_solid();
     }
-    if (num_solids == 0) fail("expected 'solid'");
+    if (num_solids == 0) fail_io("expected 'solid'");
   }
 
  private:
-  [[noreturn]] void fail(const std::string& what) const { throw_io(name_, Location::line(line_), what); }
-
   static bool keyword_is(std::string_view word, std::string_view keyword) {
     if (word.size() != keyword.size()) return false;
     for (std::size_t i = 0; i < word.size(); ++i)
@@ -132,7 +128,7 @@ class AsciiStlParser {
   void expect(std::string_view keyword) {
     const std::string_view word = next_word();
     if (!keyword_is(word, keyword))
-      fail("expected '" + std::string(keyword) + "', got " + describe(word));
+      fail_io("expected '" + std::string(keyword) + "', got " + describe(word));
   }
 
   double number() {
@@ -140,7 +136,7 @@ class AsciiStlParser {
     const char* q = word.data();
     double value;
     if (word.empty() || !parse_double(q, word.data() + word.size(), value) || q != word.data() + word.size())
-      fail("expected a number, got " + describe(word));
+      fail_io("expected a number, got " + describe(word));
     return value;
   }
 
@@ -152,7 +148,7 @@ class AsciiStlParser {
         return;
       }
       if (!keyword_is(word, "facet"))
-        fail("expected 'facet' or 'endsolid', got " + describe(word));
+        fail_io("expected 'facet' or 'endsolid', got " + describe(word));
       parse_facet();
     }
   }
@@ -174,7 +170,7 @@ class AsciiStlParser {
       const std::string_view word = next_word();
       if (keyword_is(word, "endloop")) break;
       if (!keyword_is(word, "vertex"))
-        fail("expected 'vertex' or 'endloop', got " + describe(word));
+        fail_io("expected 'vertex' or 'endloop', got " + describe(word));
       Vec3 p;
       for (int k = 0; k < 3; ++k) p[k] = number();
       check_finite(p, mesh_.vertices.size(), name_, Location::line(word_line));
@@ -185,18 +181,8 @@ class AsciiStlParser {
       throw_invalid(name_, Location::line(line_),
                     "facet with " + std::to_string(corners_.size()) + " vertices (a facet needs at least 3)");
     expect("endfacet");
-    ++info_.polygons_in_file;
-    if (corners_.size() > 3) ++info_.polygons_triangulated;
-    append_fan(mesh_, corners_.begin(), corners_.end());
+    add_polygon();
   }
-
-  const char* p_;
-  const char* end_;
-  const std::string& name_;
-  Mesh& mesh_;
-  ReadInfo& info_;
-  std::size_t line_ = 1;
-  std::vector<int> corners_;
 };
 
 }  // namespace

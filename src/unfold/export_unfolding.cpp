@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "subfab/core/error.h"
+#include "subfab/unfold/unfold_summary_to_json.h"
 #include "unfold/export_format.h"
 #include "unfold/triangulate_facets.h"
 #include "unfold/write_nets.h"
@@ -92,13 +93,7 @@ void write_json(const PolyMesh& mesh, const Unfolding& unfolding, const SheetLay
     fold["side"] = vbit_side(f.dihedral_deg);
     j["folds"].push_back(fold);
   }
-  nlohmann::ordered_json s;
-  s["facets_mc"] = summary.facets_mc;
-  s["facets_after_masks"] = summary.facets_after_masks;
-  s["facets_final"] = summary.facets_final;
-  s["nets"] = summary.nets;
-  s["hausdorff"] = summary.hausdorff;
-  j["summary"] = s;
+  j["summary"] = unfold_summary_to_json(summary);
   std::ofstream out = open_out(path);
   out << j.dump(1) << "\n";
   if (!out) throw IoError("cannot write " + path.string());

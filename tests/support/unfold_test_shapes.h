@@ -1,13 +1,15 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //! Small polygonal solids with known answers for the facet-deletion,
 //! unfolding and export tests: all facet normals are lattice directions and
-//! all vertices have integer coordinates.
+//! all vertices have integer coordinates; and the lattice of a block of
+//! points for the marching-cubes, chart and mask tests.
 #pragma once
 
 #include <array>
 #include <map>
 #include <vector>
 
+#include "subfab/unfold/build_lattice.h"
 #include "subfab/unfold/lattice_directions.h"
 #include "subfab/unfold/poly_mesh.h"
 
@@ -107,6 +109,18 @@ inline PolyMesh box_on_box() {
                        {{10, 11, 15, 14}},
                        {{11, 8, 12, 15}},
                        {{12, 13, 14, 15}}});
+}
+
+//! An n x n x n lattice whose inside points are the block [lo, hi]^3 (grid
+//! indices, inclusive).
+inline Lattice block_lattice(int n, int lo, int hi) {
+  Lattice l;
+  l.grid.size = {n, n, n};
+  l.inside.assign(l.grid.num_points(), 0);
+  for (int k = lo; k <= hi; ++k)
+    for (int j = lo; j <= hi; ++j)
+      for (int i = lo; i <= hi; ++i) l.inside[l.grid.index(i, j, k)] = 1;
+  return l;
 }
 
 }  // namespace subfab::test

@@ -16,6 +16,7 @@
 #include "subfab/mesh/read_mesh.h"
 #include "subfab/unfold/lattice_directions.h"
 #include "support/test_support.h"
+#include "support/unfold_test_shapes.h"
 #include "geometry/hausdorff_distance.h"
 #include "unfold/mask_catalogue.h"
 
@@ -60,16 +61,6 @@ TEST(MaskCatalogue, PoiSetsArePatternPoints) {
   }
 }
 
-Lattice box_lattice(int n, int lo, int hi) {
-  Lattice l;
-  l.grid.size = {n, n, n};
-  l.inside.assign(l.grid.num_points(), 0);
-  for (int k = lo; k <= hi; ++k)
-    for (int j = lo; j <= hi; ++j)
-      for (int i = lo; i <= hi; ++i) l.inside[l.grid.index(i, j, k)] = 1;
-  return l;
-}
-
 // Closed, 2-manifold, oriented, every facet normal a lattice direction.
 void expect_valid(const MaskResult& r, const std::string& what) {
   EXPECT_TRUE(check_boundary_edges(r.surface.mesh).passed()) << what;
@@ -92,7 +83,7 @@ long euler(const Mesh& m) {
 }
 
 TEST(ApplyMasks, RemovesABumpOnAFlatFace) {
-  Lattice l = box_lattice(9, 2, 6);
+  Lattice l = test::block_lattice(9, 2, 6);
   l.inside[l.grid.index(4, 4, 7)] = 1;  // one point on top of the box
   const McSurface before = marching_cubes(l);
   const std::size_t facets_before = extract_charts(before.mesh, before.normals).poly.num_facets();
@@ -105,7 +96,7 @@ TEST(ApplyMasks, RemovesABumpOnAFlatFace) {
 }
 
 TEST(ApplyMasks, FillsAPitOnAFlatFace) {
-  Lattice l = box_lattice(9, 2, 6);
+  Lattice l = test::block_lattice(9, 2, 6);
   l.inside[l.grid.index(4, 4, 6)] = 0;  // one point missing from the top layer
   const MaskResult r = apply_masks(l, {});
   expect_valid(r, "pit");
@@ -117,7 +108,7 @@ TEST(ApplyMasks, FillsAPitOnAFlatFace) {
 // moves may cut its corners (fewer triangle edges between normals) but never
 // add facets.
 TEST(ApplyMasks, LeavesABoxAlone) {
-  const Lattice l = box_lattice(8, 2, 5);
+  const Lattice l = test::block_lattice(8, 2, 5);
   const MaskResult r = apply_masks(l, {.single_point_moves = false});
   EXPECT_EQ(r.num_flips, 0u);
   EXPECT_EQ(r.lattice.inside, l.inside);

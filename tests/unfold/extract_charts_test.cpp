@@ -10,19 +10,10 @@
 #include "subfab/unfold/lattice_directions.h"
 #include "subfab/unfold/marching_cubes.h"
 #include "support/test_support.h"
+#include "support/unfold_test_shapes.h"
 
 namespace subfab {
 namespace {
-
-Lattice block_lattice(int n, int lo, int hi) {
-  Lattice l;
-  l.grid.size = {n, n, n};
-  l.inside.assign(l.grid.num_points(), 0);
-  for (int k = lo; k <= hi; ++k)
-    for (int j = lo; j <= hi; ++j)
-      for (int i = lo; i <= hi; ++i) l.inside[l.grid.index(i, j, k)] = 1;
-  return l;
-}
 
 // Every loop vertex lies on its facet's plane, loops[0] turns counter-
 // clockwise about the facet normal and holes clockwise; edges pair up.
@@ -53,7 +44,7 @@ void expect_valid_poly(const PolyMesh& p, double scale) {
 }
 
 TEST(ExtractCharts, OnePointGivesAnOctahedron) {
-  const Lattice l = block_lattice(3, 1, 1);
+  const Lattice l = test::block_lattice(3, 1, 1);
   const McSurface s = marching_cubes(l);
   const Charts c = extract_charts(s.mesh, s.normals);
   EXPECT_EQ(c.poly.num_facets(), 8u);
@@ -66,7 +57,7 @@ TEST(ExtractCharts, OnePointGivesAnOctahedron) {
 // (two facets) and are dropped, those in the squares' centres are on no
 // boundary.
 TEST(ExtractCharts, BlockGivesTwentySixFacets) {
-  const Lattice l = block_lattice(5, 1, 3);
+  const Lattice l = test::block_lattice(5, 1, 3);
   const McSurface s = marching_cubes(l);
   const Charts c = extract_charts(s.mesh, s.normals);
   EXPECT_EQ(c.poly.num_facets(), 26u);

@@ -4,13 +4,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <map>
-#include <tuple>
-
 
 #include "support/block_test_shapes.h"
 #include "subfab/mesh/read_mesh.h"
 #include "support/test_support.h"
+#include "support/voxel_solid.h"
 
 namespace subfab {
 namespace {
@@ -176,34 +174,8 @@ TEST(ValidateDecomposition, OverlapAndOutsideVolumesAreExact) {
 //! The cube [0, size]^3 with every face split into n x n squares (2 triangles
 //! each), outward oriented: blocks share parts of its faces.
 Mesh tessellated_cube(double size, int n) {
-  Mesh m;
-  std::map<std::tuple<int, int, int>, int> ids;
-  auto vertex = [&](int i, int j, int k) {
-    auto [it, inserted] = ids.emplace(std::make_tuple(i, j, k), static_cast<int>(m.vertices.size()));
-    if (inserted) m.vertices.emplace_back(size * i / n, size * j / n, size * k / n);
-    return it->second;
-  };
-  for (int axis = 0; axis < 3; ++axis)
-    for (int side = 0; side <= n; side += n)
-      for (int a = 0; a < n; ++a)
-        for (int b = 0; b < n; ++b) {
-          // (u, v) = the next two axes after `axis`: e_u x e_v = e_axis.
-          auto at = [&](int du, int dv) {
-            int c[3];
-            c[axis] = side;
-            c[(axis + 1) % 3] = a + du;
-            c[(axis + 2) % 3] = b + dv;
-            return vertex(c[0], c[1], c[2]);
-          };
-          const int p00 = at(0, 0), p10 = at(1, 0), p11 = at(1, 1), p01 = at(0, 1);
-          if (side == n) {
-            m.faces.push_back({p00, p10, p11});
-            m.faces.push_back({p00, p11, p01});
-          } else {
-            m.faces.push_back({p00, p11, p10});
-            m.faces.push_back({p00, p01, p11});
-          }
-        }
+  Mesh m = test::union_of_boxes({{{0, 0, 0}, {n, n, n}}});
+  for (Vec3& v : m.vertices) v = v * size / n;
   return m;
 }
 

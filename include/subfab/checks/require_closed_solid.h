@@ -4,6 +4,8 @@
 //! input through before doing any work.
 #pragma once
 
+#include <string>
+
 #include "subfab/core/progress.h"
 #include "subfab/mesh/mesh.h"
 
@@ -16,5 +18,12 @@ namespace subfab {
 //! \throw InvalidMeshError naming the first failing check, with counts,
 //!        example ids and what the user can do.
 void require_closed_solid(Mesh& mesh, Progress* progress = nullptr);
+
+//! The same gate for a mesh an algorithm made (its own result), on a copy:
+//! `mesh` is not changed, and a mesh oriented inward as a whole passes.
+//! \throw AlgorithmError `before` + the message of require_closed_solid()'s
+//!        InvalidMeshError + `after`.
+void require_closed_solid_result(const Mesh& mesh, const std::string& before,
+                                 const std::string& after = "");
 
 }  // namespace subfab
