@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "geometry/deterministic_arena.h"
+#include "geometry/exact_determinant_signs.h"
 #include "geometry/exact_mesh.h"
 #include "geometry/solid_index.h"
 #include "geometry/triangle_meets_closed_box.h"
