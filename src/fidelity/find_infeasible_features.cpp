@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "geometry/exact_normal_signs.h"
-#include "geometry/solid_index.h"
+#include "geometry/triangle_meets_open_box.h"
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
 

@@ -90,8 +90,7 @@ bool has_coincident_vertices(const ExactMesh& mesh) {
   points.reserve(mesh.number_of_vertices());
   for (auto v : mesh.vertices())
     if (!mesh.is_isolated(v)) points.push_back(mesh.point(v));
-  auto less = [](const ExactPoint& p, const ExactPoint& q) { return CGAL::compare_xyz(p, q) == CGAL::SMALLER; };
-  std::sort(points.begin(), points.end(), less);
+  std::sort(points.begin(), points.end(), ExactPointLess());
   return std::adjacent_find(points.begin(), points.end()) != points.end();
 }
 

@@ -21,6 +21,19 @@ namespace subfab::detail {
 using ExactKernel = CGAL::Exact_predicates_exact_constructions_kernel;
 using ExactPoint = ExactKernel::Point_3;
 using ExactMesh = CGAL::Surface_mesh<ExactPoint>;
+// Handles of an ExactMesh.
+using VertexIndex = ExactMesh::Vertex_index;
+using HalfedgeIndex = ExactMesh::Halfedge_index;
+using EdgeIndex = ExactMesh::Edge_index;
+using FaceIndex = ExactMesh::Face_index;
+
+//! Lexicographic (x, y, z) order of exact points, exact: for maps keyed by
+//! point and for sorting points.
+struct ExactPointLess {
+  bool operator()(const ExactPoint& p, const ExactPoint& q) const {
+    return CGAL::compare_xyz(p, q) == CGAL::SMALLER;
+  }
+};
 
 //! Builds a CGAL Surface_mesh of any point type (ExactMesh, or one on an
 //! inexact kernel) from a double mesh, coordinates taken as they are:
@@ -77,7 +90,7 @@ bool has_coincident_vertices(const ExactMesh& mesh);
 //! that CGAL's lazily created per-thread objects (the shared "zero" of each
 //! lazy-exact type) are made on the normal heap, before any
 //! DeterministicArena: objects made inside an arena would die with it.
-//! (Defined in carve_blocks.cpp.)
+//! (Defined in warm_up_exact_booleans.cpp.)
 void warm_up_exact_booleans();
 
 }  // namespace subfab::detail

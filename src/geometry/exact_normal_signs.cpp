@@ -1,27 +1,15 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "geometry/exact_normal_signs.h"
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-
+#include "geometry/exact_determinant_signs.h"
 #include "subfab/core/parallel.h"
 
 namespace subfab::detail {
-namespace {
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Point2 = Kernel::Point_2;
-
-//! Exact sign of (b - a).u * (c - a).v - (b - a).v * (c - a).u.
-std::int8_t projected_orientation(const Vec3& a, const Vec3& b, const Vec3& c, int u, int v) {
-  return static_cast<std::int8_t>(
-      CGAL::orientation(Point2(a[u], a[v]), Point2(b[u], b[v]), Point2(c[u], c[v])));
-}
-}  // namespace
 
 std::array<std::int8_t, 3> exact_normal_signs(const Vec3& a, const Vec3& b, const Vec3& c) {
-  // n_x = orient(yz), n_y = orient(zx), n_z = orient(xy): the cyclic order
-  // (u, v) = (w + 1, w + 2) gives component w of the cross product.
-  return {projected_orientation(a, b, c, 1, 2), projected_orientation(a, b, c, 2, 0),
-          projected_orientation(a, b, c, 0, 1)};
+  return {static_cast<std::int8_t>(normal_component_sign(a, b, c, 0)),
+          static_cast<std::int8_t>(normal_component_sign(a, b, c, 1)),
+          static_cast<std::int8_t>(normal_component_sign(a, b, c, 2))};
 }
 
 std::array<std::int8_t, 3> facing_signs(const Vec3& a, const Vec3& b, const Vec3& c, double overhang_sine) {

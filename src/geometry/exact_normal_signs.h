@@ -2,8 +2,9 @@
 //! \file exact_normal_signs.h
 //! Exact signs of the components of a triangle's normal (b - a) x (c - a).
 //! Each component is the orientation of the triangle projected on a
-//! coordinate plane, decided with exact predicates (CGAL Epick), so the sign
-//! of n.d for an axis direction d is never wrong.
+//! coordinate plane, decided exactly (normal_component_sign(),
+//! exact_determinant_signs.h), so the sign of n.d for an axis direction d is
+//! never wrong.
 #pragma once
 
 #include <array>

@@ -1,8 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "geometry/solid_index.h"
 
-#include <CGAL/Exact_rational.h>
-
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -10,142 +8,12 @@
 #include <cstdint>
 #include <numeric>
 
+#include "geometry/exact_determinant_signs.h"
 #include "geometry/exact_normal_signs.h"
+#include "geometry/triangle_meets_open_box.h"
 #include "subfab/core/error.h"
 
 namespace subfab::detail {
-namespace {
-
-using Exact = CGAL::Exact_rational;
-
-constexpr double kEps = 0x1p-53;  // half an ulp of 1 (Shewchuk's epsilon)
-// Error bounds of Shewchuk's orient2d / orient3d, which have exactly the
-// structure evaluated below (products of rounded differences of inputs).
-constexpr double kDet2Bound = (3.0 + 16.0 * kEps) * kEps;
-constexpr double kDet3Bound = (7.0 + 56.0 * kEps) * kEps;
-// Below this magnitude products may have underflowed: go exact.
-constexpr double kTiny = 1e-280;
-
-int sign_of(const Exact& x) { return CGAL::sign(x); }
-
-template <class T>
-int sign_of_number(T x) {
-  return (x > 0) - (x < 0);
-}
-
-//! Exact sign of (ux1 - ux0) * (vy1 - vy0) - (uy1 - uy0) * (vx1 - vx0).
-int det2_sign(double ux1, double ux0, double uy1, double uy0, double vx1, double vx0, double vy1,
-              double vy0) {
-  const double t1 = (ux1 - ux0) * (vy1 - vy0);
-  const double t2 = (uy1 - uy0) * (vx1 - vx0);
-  const double det = t1 - t2;
-  const double sum = std::abs(t1) + std::abs(t2);
-  if (sum > kTiny && std::isfinite(sum) && std::abs(det) > kDet2Bound * sum) return sign_of_number(det);
-  if (sum == 0.0 && t1 == 0.0 && t2 == 0.0) {
-    // Both products are exactly zero iff one factor of each is exactly zero
-    // (products of nonzero doubles can only underflow below kTiny: handled
-    // by the exact path, since then sum <= kTiny but some factor is nonzero).
-    const bool z1 = (ux1 == ux0) || (vy1 == vy0);
-    const bool z2 = (uy1 == uy0) || (vx1 == vx0);
-    if (z1 && z2) return 0;
-  }
-  const Exact e = (Exact(ux1) - Exact(ux0)) * (Exact(vy1) - Exact(vy0)) -
-                  (Exact(uy1) - Exact(uy0)) * (Exact(vx1) - Exact(vx0));
-  return sign_of(e);
-}
-
-}  // namespace
-
-int normal_component_sign(const Vec3& a, const Vec3& b, const Vec3& c, int dim) {
-  const int i = (dim + 1) % 3;
-  const int j = (dim + 2) % 3;
-  // n_dim = (b - a)_i (c - a)_j - (b - a)_j (c - a)_i
-  return det2_sign(b[i], a[i], b[j], a[j], c[i], a[i], c[j], a[j]);
-}
-
-int orient3d_sign(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& p) {
-  const double ux = b.x() - a.x(), uy = b.y() - a.y(), uz = b.z() - a.z();
-  const double vx = c.x() - a.x(), vy = c.y() - a.y(), vz = c.z() - a.z();
-  const double wx = p.x() - a.x(), wy = p.y() - a.y(), wz = p.z() - a.z();
-  // det[u; v; w] = w . (u x v)
-  const double m1a = uy * vz, m1b = uz * vy;
-  const double m2a = uz * vx, m2b = ux * vz;
-  const double m3a = ux * vy, m3b = uy * vx;
-  const double det = wx * (m1a - m1b) + wy * (m2a - m2b) + wz * (m3a - m3b);
-  const double permanent = std::abs(wx) * (std::abs(m1a) + std::abs(m1b)) +
-                           std::abs(wy) * (std::abs(m2a) + std::abs(m2b)) +
-                           std::abs(wz) * (std::abs(m3a) + std::abs(m3b));
-  if (permanent > kTiny && std::isfinite(permanent) && std::abs(det) > kDet3Bound * permanent)
-    return sign_of_number(det);
-  const Exact eux = Exact(b.x()) - Exact(a.x()), euy = Exact(b.y()) - Exact(a.y()),
-              euz = Exact(b.z()) - Exact(a.z());
-  const Exact evx = Exact(c.x()) - Exact(a.x()), evy = Exact(c.y()) - Exact(a.y()),
-              evz = Exact(c.z()) - Exact(a.z());
-  const Exact ewx = Exact(p.x()) - Exact(a.x()), ewy = Exact(p.y()) - Exact(a.y()),
-              ewz = Exact(p.z()) - Exact(a.z());
-  const Exact e = ewx * (euy * evz - euz * evy) + ewy * (euz * evx - eux * evz) + ewz * (eux * evy - euy * evx);
-  return sign_of(e);
-}
-
-bool triangle_meets_open_box(const Vec3& a, const Vec3& b, const Vec3& c, const Box3& box) {
-  const Vec3& lo = box.min;
-  const Vec3& hi = box.max;
-  for (int k = 0; k < 3; ++k)
-    if (!(hi[k] > lo[k])) return false;  // empty interior
-  // 1. Box face normals: the triangle's bounding box.
-  for (int k = 0; k < 3; ++k) {
-    const double tmin = std::min({a[k], b[k], c[k]});
-    const double tmax = std::max({a[k], b[k], c[k]});
-    if (tmax <= lo[k] || tmin >= hi[k]) return false;
-  }
-  // 2. Triangle normal n: separated iff the whole box is weakly on one side
-  //    of the triangle's plane (skipped when n = 0).
-  {
-    std::array<int, 3> s{};
-    for (int k = 0; k < 3; ++k) s[k] = normal_component_sign(a, b, c, k);
-    if (s[0] != 0 || s[1] != 0 || s[2] != 0) {
-      Vec3 rmin, rmax;  // box corners minimising / maximising n.x
-      for (int k = 0; k < 3; ++k) {
-        rmin[k] = s[k] > 0 ? lo[k] : hi[k];
-        rmax[k] = s[k] > 0 ? hi[k] : lo[k];
-      }
-      if (orient3d_sign(a, b, c, rmin) >= 0) return false;
-      if (orient3d_sign(a, b, c, rmax) <= 0) return false;
-    }
-  }
-  // 3. Cross products e_k x (q - p) for every box axis k and triangle edge
-  //    (p, q), r the third vertex. In the plane (i, j) orthogonal to k the
-  //    functional is f(x) = e_i x_j - e_j x_i with e = q - p.
-  const std::array<const Vec3*, 3> v = {&a, &b, &c};
-  for (int k = 0; k < 3; ++k) {
-    const int i = (k + 1) % 3;
-    const int j = (k + 2) % 3;
-    for (int e = 0; e < 3; ++e) {
-      const Vec3& p = *v[e];
-      const Vec3& q = *v[(e + 1) % 3];
-      const Vec3& r = *v[(e + 2) % 3];
-      const int si = sign_of_number(q[i] - p[i]);  // exact: sign of a difference of doubles
-      const int sj = sign_of_number(q[j] - p[j]);
-      if (si == 0 && sj == 0) continue;  // edge parallel to e_k: zero axis
-      // Corner of the box rectangle minimising f (coefficient of x_j is e_i,
-      // of x_i is -e_j), and the one maximising it.
-      const double min_j = si > 0 ? lo[j] : hi[j];
-      const double min_i = sj > 0 ? hi[i] : lo[i];
-      const double max_j = si > 0 ? hi[j] : lo[j];
-      const double max_i = sj > 0 ? lo[i] : hi[i];
-      // sign of f(corner) - f(x) = e_i (corner_j - x_j) - e_j (corner_i - x_i)
-      auto diff_sign = [&](double ci, double cj, const Vec3& x) {
-        return det2_sign(q[i], p[i], q[j], p[j], ci, x[i], cj, x[j]);
-      };
-      // Triangle entirely below the box's minimum: f(rmin) >= f(p) = f(q), f(r).
-      if (diff_sign(min_i, min_j, p) >= 0 && diff_sign(min_i, min_j, r) >= 0) return false;
-      // Triangle entirely above the box's maximum.
-      if (diff_sign(max_i, max_j, p) <= 0 && diff_sign(max_i, max_j, r) <= 0) return false;
-    }
-  }
-  return true;
-}
-
 namespace {
 
 //! Bounding-volume hierarchy over face bounding boxes (median split).

@@ -48,18 +48,6 @@
 
 namespace subfab::detail {
 
-//! Exact sign (-1, 0, +1) of component `dim` (0, 1, 2) of (b - a) x (c - a).
-int normal_component_sign(const Vec3& a, const Vec3& b, const Vec3& c, int dim);
-
-//! Exact sign of det[b - a, c - a, p - a] = ((b - a) x (c - a)).(p - a):
-//! +1 when p is on the side the normal points to.
-int orient3d_sign(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& p);
-
-//! Exact: does the closed triangle (a, b, c) meet the open interior of `box`?
-//! (Separating-axis test with weak separation over the 13 candidate axes,
-//! every sign decided exactly.) False when the box has a zero extent.
-bool triangle_meets_open_box(const Vec3& a, const Vec3& b, const Vec3& c, const Box3& box);
-
 class SolidIndex {
  public:
   //! Builds the index (copies the mesh). O(F log F).
