@@ -3,6 +3,7 @@
 //! `subfab decompose` against its input (the seven checks of
 //! validate_decomposition.h). Prints a table per check; exit 0 when all
 //! pass, 3 when one fails, 2 when the input or the folder cannot be read.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -85,6 +86,97 @@ std::vector<ValidationBlock> read_decomposition(const fs::path& outdir, Validati
   }
 }
 
+std::string sci(double x, int digits = 2) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*e", digits - 1, x);
+  return buf;
+}
+
+std::string percent(double part, double whole) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.3g%%", whole > 0 ? 100.0 * part / whole : 0.0);
+  return buf;
+}
+
+std::string block_label(std::size_t i) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "block %03zu", i);
+  return buf;
+}
+
+//! The milled-shape lines of the text report (informational, issue 17).
+void print_milled(std::ostream& out, const MilledShapesReport& r, double diagonal) {
+  const double d = std::max(diagonal, 1e-300);
+  const std::size_t n = r.blocks.size(), exact = r.num_exact();
+  if (exact == n) {
+    out << "  milled shapes (informational): every block is an exact height field, its milled shape is the block "
+           "(filled 0, deviation 0)\n";
+    return;
+  }
+  out << "  milled shapes (informational): " << (n - exact) << " of " << n
+      << " blocks overhang; what a 3-axis machine makes of them (distances within " << sci(r.hausdorff_error / d)
+      << " x diagonal):\n";
+  double filled = 0.0, volume = 0.0, worst = -1.0;
+  std::size_t worst_block = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const MilledShapeMeasures& m = r.blocks[i];
+    volume += m.block_volume;
+    filled += m.filled_volume;
+    if (m.exact) continue;
+    if (m.deviation > worst) {
+      worst = m.deviation;
+      worst_block = i;
+    }
+    out << "    " << block_label(i) << ": ";
+    if (!m.error.empty()) out << m.error << "; ";
+    out << "filled " << sci(m.filled_volume) << " (" << percent(m.filled_volume, m.block_volume)
+        << " of the block), deviation " << sci(m.deviation / d) << " x diagonal (undercut depth "
+        << sci(m.deviation_to_block / d) << "), outside the input " << sci(m.outside_volume) << " ("
+        << percent(m.outside_volume, m.block_volume) << " of the block) up to " << sci(m.outside_distance / d)
+        << " x diagonal\n";
+  }
+  for (const MilledCollision& c : r.collisions)
+    out << "    " << block_label(c.a) << " and " << block_label(c.b) << ": milled shapes collide, overlap "
+        << sci(c.volume) << "\n";
+  out << "  milled shapes: max deviation " << sci(std::max(worst, 0.0) / d) << " x diagonal (" << block_label(worst_block)
+      << "), filled " << sci(filled) << " in total (" << percent(filled, volume) << " of the blocks' volume), "
+      << r.collisions.size() << " collisions (" << r.num_pairs_checked << " pairs checked)\n";
+}
+
+//! The "milled_shapes" object of --json.
+nlohmann::ordered_json milled_json(const MilledShapesReport& r, double diagonal) {
+  const double d = std::max(diagonal, 1e-300);
+  nlohmann::ordered_json blocks = nlohmann::ordered_json::array();
+  for (std::size_t i = 0; i < r.blocks.size(); ++i) {
+    const MilledShapeMeasures& m = r.blocks[i];
+    blocks.push_back({{"id", i},
+                      {"exact", m.exact},
+                      {"num_faces", m.num_faces},
+                      {"block_volume", m.block_volume},
+                      {"volume", m.volume},
+                      {"filled_volume", m.filled_volume},
+                      {"deviation", m.deviation},
+                      {"deviation_fraction", m.deviation / d},
+                      {"deviation_to_block", m.deviation_to_block},
+                      {"deviation_to_block_fraction", m.deviation_to_block / d},
+                      {"outside_volume", m.outside_volume},
+                      {"outside_distance", m.outside_distance},
+                      {"outside_distance_fraction", m.outside_distance / d},
+                      {"error", m.error.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(m.error)}});
+  }
+  nlohmann::ordered_json collisions = nlohmann::ordered_json::array();
+  for (const MilledCollision& c : r.collisions) collisions.push_back({{"a", c.a}, {"b", c.b}, {"volume", c.volume}});
+  return {{"num_exact", r.num_exact()},
+          {"hausdorff_error", r.hausdorff_error},
+          {"max_deviation", r.max_deviation()},
+          {"max_deviation_fraction", r.max_deviation() / d},
+          {"total_filled_volume", r.total_filled_volume()},
+          {"num_collisions", r.collisions.size()},
+          {"num_pairs_checked", r.num_pairs_checked},
+          {"blocks", blocks},
+          {"collisions", collisions}};
+}
+
 int run_validate(const ValidateArgs& args) {
   Mesh input = read_mesh(args.mesh);  // IoError / InvalidMeshError: exit 2
   ValidationOptions options;
@@ -131,6 +223,7 @@ int run_validate(const ValidateArgs& args) {
     if (!args.common.quiet) progress.warn(repair_note);
   }
   const ValidationReport report = validate_decomposition(input, blocks, options);
+  const double diagonal = bounding_box(input).diagonal();
 
   if (args.common.json) {
     nlohmann::ordered_json j;
@@ -154,6 +247,7 @@ int run_validate(const ValidateArgs& args) {
                         {"num_failures", c.num_failures},
                         {"failures", c.failures}});
     j["checks"] = checks;
+    j["milled_shapes"] = milled_json(report.milled, diagonal);
     std::cout << j.dump(2) << "\n";
   } else {
     std::ostringstream out;
@@ -168,6 +262,7 @@ int run_validate(const ValidateArgs& args) {
       if (c.num_failures > c.failures.size())
         out << "           ... and " << (c.num_failures - c.failures.size()) << " more\n";
     }
+    print_milled(out, report.milled, diagonal);
     out << (report.passed() ? "all checks passed\n" : "validation FAILED\n");
     std::cout << out.str();
   }
@@ -192,7 +287,10 @@ const RegisterCommand kRegisterValidate(make_command<ValidateArgs>(
     "within 1e-5 x diagonal of a block); (6) height and machine limits; (7) machine meshes are the "
     "blocks moved rigidly. When decompose repaired infeasible features (decomposition.json names "
     "OUTDIR/input_repaired.obj), checks 4 and 5 use the repaired input and say so, with the recorded "
-    "deviation. Exit 0 if all pass, 3 if one fails, 2 if the files cannot be read.",
+    "deviation. Then, informational (never a failure): each block's milled shape (what a 3-axis machine "
+    "makes of it: everything between its base and its top surface along its direction), with the filled "
+    "volume, its deviation from the input, how much sticks out and milled-shape collisions. Exit 0 if all "
+    "pass, 3 if one fails, 2 if the files cannot be read.",
     add_validate_options, run_validate));
 
 }  // namespace

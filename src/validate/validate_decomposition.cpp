@@ -408,6 +408,23 @@ ValidationReport validate_decomposition(const Mesh& input, const std::vector<Val
     machine.summary = std::to_string(checked) + " machine meshes compared face by face";
   }
   report.checks.push_back(machine);
+
+  // Milled shapes (informational; exact blocks cost a height-field test).
+  if (options.measure_milled_shapes) {
+    std::vector<MilledBlockInput> mb(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      mb[i].mesh = &blocks[i].mesh;
+      mb[i].direction = blocks[i].direction;
+      const Eigen::Matrix3d rot = blocks[i].machine_transform.topLeftCorner<3, 3>();
+      if ((rot.transpose() * rot - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() <= 1e-9 &&
+          rot.determinant() > 0 && (rot * blocks[i].direction - Vec3::UnitZ()).norm() <= 1e-9)
+        mb[i].frame = rot;
+    }
+    MilledMeasureOptions mo;
+    mo.hausdorff_error = options.milled_hausdorff_error;
+    mo.progress = progress;
+    report.milled = measure_milled_shapes(input, mb, mo);
+  }
   return report;
 }
 

@@ -103,6 +103,34 @@ TEST(ValidateDecomposition, OverhangAllowanceAcceptsFacesLeaningLessThanIt) {
   EXPECT_EQ(check_height_field(box_solid({0, 0, 0}, {1, 1, 1}), Vec3::UnitZ()).steepest_cosine, 0.0);
 }
 
+TEST(ValidateDecomposition, MilledShapesAreMeasuredAndNeverFail) {
+  // The barrel as one block under a 10 deg allowance: the seven checks pass;
+  // its milled shape fills the undercut below the widest ring (known volume
+  // and deviation: a bottom corner of the milled box, 0.1228 from the barrel).
+  const Mesh barrel = test::barrel_solid(1.0, 1.0, 5.0);
+  ValidationOptions o = fast_options();
+  o.normal_tolerance = height_field_normal_tolerance(10.0);
+  const ValidationReport r = validate_decomposition(barrel, {up_block(barrel)}, o);
+  EXPECT_TRUE(r.passed());
+  ASSERT_EQ(r.milled.blocks.size(), 1u);
+  const MilledShapeMeasures& m = r.milled.blocks[0];
+  EXPECT_FALSE(m.exact);
+  EXPECT_TRUE(m.error.empty()) << m.error;
+  const double t = std::tan(5.0 * 3.14159265358979323846 / 180.0);
+  EXPECT_NEAR(m.filled_volume, 4.0 * (t + 2.0 * t * t / 3.0), 1e-12);
+  EXPECT_NEAR(m.deviation, t * std::sqrt(2.0) / std::sqrt(1.0 + 2.0 * t * t), r.milled.hausdorff_error + 1e-12);
+  EXPECT_NEAR(m.outside_volume, m.filled_volume, 1e-12);
+  EXPECT_NEAR(m.outside_distance, m.deviation, r.milled.hausdorff_error + 1e-12);
+  // Exact blocks: milled shape = block; turned off: nothing measured.
+  const Mesh input = l_solid();
+  const std::vector<ValidationBlock> blocks = {up_block(box_solid({0, 0, 0}, {2, 1, 1})),
+                                               up_block(box_solid({0, 1, 0}, {1, 2, 1}))};
+  EXPECT_EQ(validate_decomposition(input, blocks, fast_options()).milled.num_exact(), 2u);
+  o = fast_options();
+  o.measure_milled_shapes = false;
+  EXPECT_TRUE(validate_decomposition(input, blocks, o).milled.blocks.empty());
+}
+
 TEST(ValidateDecomposition, GapFails) {
   const std::vector<ValidationBlock> blocks = {up_block(box_solid({0, 0, 0}, {2, 1, 1}))};
   const ValidationReport r = validate_decomposition(l_solid(), blocks, fast_options());

@@ -23,6 +23,7 @@
 
 #include "subfab/core/progress.h"
 #include "subfab/mesh/mesh.h"
+#include "subfab/validate/milled_shape.h"
 
 namespace subfab {
 
@@ -158,6 +159,8 @@ struct ValidationOptions {
   double coverage_tolerance = 1e-5;   // check 5: distance / bbox diagonal
   double limit_tolerance = 1e-6;      // check 6 and 7: slack / bbox diagonal
   ValidationLimits limits;            // check 6
+  bool measure_milled_shapes = true;  // informational: each block's milled shape (milled_shape.h)
+  double milled_hausdorff_error = 1e-5;  // error bound of its distances (fraction of the diagonal)
   Progress* progress = nullptr;       // progress per check (nullptr: silent)
 };
 
@@ -173,6 +176,7 @@ struct CheckReport {
 //! Outcome of validate_decomposition().
 struct ValidationReport {
   std::vector<CheckReport> checks;  // the seven checks, in order
+  MilledShapesReport milled;        // informational, not a check (empty when not measured)
   bool passed() const {
     for (const CheckReport& c : checks)
       if (!c.passed) return false;
@@ -183,7 +187,9 @@ struct ValidationReport {
 //! Runs the seven checks on a decomposition of `input` (thesis Section 4.2).
 //! Pairwise overlaps use exact booleans only for pairs whose bounding boxes
 //! overlap and whose overlap_volume_bound() (input frame, or either block's
-//! machine frame) exceeds the tolerance.
+//! machine frame) exceeds the tolerance. Then, unless turned off, measures
+//! every block's milled shape (measure_milled_shapes(), informational: it
+//! never fails the validation).
 ValidationReport validate_decomposition(const Mesh& input, const std::vector<ValidationBlock>& blocks,
                                         const ValidationOptions& options = {});
 

@@ -1,0 +1,107 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// `subfab validate`'s milled-shape measures (informational), as a user sees them.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "subfab/mesh/write_mesh.h"
+#include "support/block_test_shapes.h"
+#include "support/test_support.h"
+
+namespace subfab {
+namespace {
+
+namespace fs = std::filesystem;
+using test::quoted;
+using test::run_subfab;
+using test::slurp;
+
+nlohmann::json json_of(const std::string& output) { return nlohmann::json::parse(output.substr(output.find('{'))); }
+
+TEST(ValidateCli, MilledShapeOfALeaningBarrelHasItsKnownMeasures) {
+  // One block under a 10 deg allowance; its lower faces lean 5 deg: the
+  // milled shape fills 4 (t + 2 t^2 / 3) under the widest ring (t = tan 5
+  // deg) and its bottom corner is t sqrt 2 / sqrt(1 + 2 t^2) from the barrel.
+  const fs::path dir = test::temp_dir();
+  const fs::path mesh = dir / "barrel.obj";
+  write_mesh(test::barrel_solid(1.0, 1.0, 5.0), mesh);
+  ASSERT_EQ(run_subfab("decompose " + quoted(mesh) + " -o " + quoted(dir / "out") +
+                       " --no-orient --max-overhang 10 --quiet").exit_code, 0);
+  const auto v = run_subfab("validate " + quoted(mesh) + " " + quoted(dir / "out") + " --json");
+  ASSERT_EQ(v.exit_code, 0) << v.output;
+  const auto j = json_of(v.output);
+  EXPECT_TRUE(j["passed"].get<bool>());
+  const auto& m = j["milled_shapes"];
+  ASSERT_EQ(m["blocks"].size(), 1u);
+  const auto& b = m["blocks"][0];
+  EXPECT_FALSE(b["exact"].get<bool>());
+  EXPECT_TRUE(b["error"].is_null());
+  const double t = std::tan(5.0 * 3.14159265358979323846 / 180.0);
+  const double error = m["hausdorff_error"].get<double>();
+  EXPECT_NEAR(b["filled_volume"].get<double>(), 4.0 * (t + 2.0 * t * t / 3.0), 1e-9);
+  EXPECT_NEAR(b["deviation"].get<double>(), t * std::sqrt(2.0) / std::sqrt(1.0 + 2.0 * t * t), error + 1e-9);
+  EXPECT_NEAR(b["outside_volume"].get<double>(), b["filled_volume"].get<double>(), 1e-9);
+  EXPECT_EQ(m["num_collisions"], 0);
+  EXPECT_DOUBLE_EQ(m["max_deviation"].get<double>(), b["deviation"].get<double>());
+}
+
+TEST(ValidateCli, PrintsMilledShapesOfAMaxOverhangDecomposition) {
+  const fs::path dir = test::temp_dir();
+  const fs::path mesh = test::data_path("joint.off");
+  ASSERT_EQ(run_subfab("decompose " + quoted(mesh) + " -o " + quoted(dir) + " --max-overhang 15 --quiet").exit_code,
+            0);
+  const auto text = run_subfab("validate " + quoted(mesh) + " " + quoted(dir) + " --quiet");
+  ASSERT_EQ(text.exit_code, 0) << text.output;  // informational: the checks decide the exit code
+  EXPECT_NE(text.output.find("milled shapes (informational): 1 of 2 blocks overhang"), std::string::npos)
+      << text.output;
+  EXPECT_NE(text.output.find("    block 000: filled "), std::string::npos) << text.output;
+  EXPECT_NE(text.output.find("  milled shapes: max deviation "), std::string::npos) << text.output;
+  EXPECT_NE(text.output.find("all checks passed"), std::string::npos) << text.output;
+  // The JSON agrees with decomposition.json: a block that leans is not exact
+  // and has filled material; the measures are consistent with each other.
+  const auto doc = nlohmann::json::parse(slurp(dir / "decomposition.json"));
+  const auto j = json_of(run_subfab("validate " + quoted(mesh) + " " + quoted(dir) + " --json").output);
+  const auto& m = j["milled_shapes"];
+  ASSERT_EQ(m["blocks"].size(), doc["blocks"].size());
+  const double diagonal = doc["input"]["bbox_diagonal"].get<double>();
+  const double error = m["hausdorff_error"].get<double>();
+  double filled = 0.0;
+  for (std::size_t i = 0; i < m["blocks"].size(); ++i) {
+    const auto& b = m["blocks"][i];
+    const bool leans = doc["blocks"][i]["max_overhang_deg"].get<double>() > 0.1;
+    EXPECT_EQ(b["exact"].get<bool>(), !leans) << i;
+    if (leans) {
+      EXPECT_GT(b["filled_volume"].get<double>(), 0.0) << i;
+      EXPECT_GT(b["deviation"].get<double>(), 0.0) << i;
+    } else {
+      EXPECT_EQ(b["filled_volume"].get<double>(), 0.0) << i;
+      EXPECT_EQ(b["deviation"].get<double>(), 0.0) << i;
+    }
+    EXPECT_NEAR(b["deviation_fraction"].get<double>() * diagonal, b["deviation"].get<double>(), 1e-12);
+    EXPECT_LE(b["deviation"].get<double>(), b["deviation_to_block"].get<double>() + 2 * error) << i;
+    EXPECT_LE(b["outside_distance"].get<double>(), b["deviation"].get<double>() + 2 * error) << i;
+    EXPECT_LE(b["outside_volume"].get<double>(), b["filled_volume"].get<double>() * (1 + 1e-9) + 1e-12) << i;
+    filled += b["filled_volume"].get<double>();
+  }
+  EXPECT_NEAR(m["total_filled_volume"].get<double>(), filled, 1e-12 * (1 + filled));
+  EXPECT_FALSE(j["checks"].empty());  // the existing keys are still there
+}
+
+TEST(ValidateCli, AnExactDecompositionSaysItsMilledShapesAreItsBlocks) {
+  const fs::path dir = test::temp_dir();
+  const fs::path mesh = test::data_path("joint.off");
+  ASSERT_EQ(run_subfab("decompose " + quoted(mesh) + " -o " + quoted(dir) + " --quiet").exit_code, 0);
+  const auto v = run_subfab("validate " + quoted(mesh) + " " + quoted(dir) + " --quiet");
+  ASSERT_EQ(v.exit_code, 0) << v.output;
+  EXPECT_NE(v.output.find("every block is an exact height field, its milled shape is the block"), std::string::npos)
+      << v.output;
+  const auto j = json_of(run_subfab("validate " + quoted(mesh) + " " + quoted(dir) + " --json").output);
+  EXPECT_EQ(j["milled_shapes"]["num_exact"], j["num_blocks"]);
+  EXPECT_EQ(j["milled_shapes"]["max_deviation"], 0.0);
+}
+
+}  // namespace
+}  // namespace subfab
