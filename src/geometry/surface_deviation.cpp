@@ -25,34 +25,35 @@ using SurfaceMesh = CGAL::Surface_mesh<Point>;
 //! The listed faces of `mesh` (all if `faces` is null) as a Surface_mesh.
 SurfaceMesh to_surface_mesh(const Mesh& mesh, const std::vector<int>* faces) {
   SurfaceMesh sm;
-  std::unordered_map<int, SurfaceMesh::Vertex_index> map;
+  append_distance_patch(sm, mesh, faces);
+  return sm;
+}
+
+}  // namespace
+
+void append_distance_patch(DistanceMesh& out, const Mesh& mesh, const std::vector<int>* faces) {
+  std::unordered_map<int, DistanceMesh::Vertex_index> map;
+  auto point = [&](int v) {
+    const Vec3& p = mesh.vertices[static_cast<std::size_t>(v)];
+    return Point(p.x(), p.y(), p.z());
+  };
   auto vertex = [&](int v) {
     auto it = map.find(v);
     if (it != map.end()) return it->second;
-    const Vec3& p = mesh.vertices[static_cast<std::size_t>(v)];
-    const auto h = sm.add_vertex(Point(p.x(), p.y(), p.z()));
+    const auto h = out.add_vertex(point(v));
     map.emplace(v, h);
     return h;
   };
   auto add = [&](const Triangle& t) {
     const auto a = vertex(t[0]), b = vertex(t[1]), c = vertex(t[2]);
-    if (sm.add_face(a, b, c) != SurfaceMesh::null_face()) return;
-    // A patch can pinch at a vertex (two fans touching): this face gets its
-    // own copies of the vertices (distances do not depend on connectivity).
-    auto fresh = [&](int v) {
-      const Vec3& p = mesh.vertices[static_cast<std::size_t>(v)];
-      return sm.add_vertex(Point(p.x(), p.y(), p.z()));
-    };
-    sm.add_face(fresh(t[0]), fresh(t[1]), fresh(t[2]));
+    if (out.add_face(a, b, c) != DistanceMesh::null_face()) return;
+    out.add_face(out.add_vertex(point(t[0])), out.add_vertex(point(t[1])), out.add_vertex(point(t[2])));
   };
   if (faces)
     for (int f : *faces) add(mesh.faces[static_cast<std::size_t>(f)]);
   else
     for (const Triangle& t : mesh.faces) add(t);
-  return sm;
 }
-
-}  // namespace
 
 SurfaceDeviation surface_deviation(const Mesh& input, const Mesh& reference, const Mesh& modified,
                                    const std::vector<int>& changed, double error_bound) {

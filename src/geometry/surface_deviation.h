@@ -5,11 +5,23 @@
 //! faithfulness the same way: Hausdorff / mean distance to the input).
 #pragma once
 
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Surface_mesh.h>
+
 #include <vector>
 
 #include "subfab/mesh/mesh.h"
 
 namespace subfab::detail {
+
+//! The face graph CGAL's distance queries run on (double coordinates).
+using DistanceMesh = CGAL::Surface_mesh<CGAL::Exact_predicates_inexact_constructions_kernel::Point_3>;
+
+//! Appends the listed faces of `mesh` (all when `faces` is null), in list
+//! order, to `out`: vertices shared where the faces form a 2-manifold, copied
+//! for a face that cannot be added otherwise (a patch pinched at a vertex;
+//! distances do not depend on connectivity).
+void append_distance_patch(DistanceMesh& out, const Mesh& mesh, const std::vector<int>* faces);
 
 struct SurfaceDeviation {
   double hausdorff = 0;  // symmetric Hausdorff distance, model units (CGAL bounded error, within `error_bound`)

@@ -24,13 +24,14 @@
 #include "subfab/validate/milled_shape.h"
 #include "subfab/validate/validate_decomposition.h"
 #include "geometry/solid_index.h"
+#include "geometry/surface_deviation.h"
 #include "validate/validate_booleans.h"
 
 namespace subfab {
 namespace {
 
 using Epick = CGAL::Exact_predicates_inexact_constructions_kernel;
-using SurfaceMesh = CGAL::Surface_mesh<Epick::Point_3>;
+using SurfaceMesh = detail::DistanceMesh;
 
 bool boxes_meet(const BoundingBox& a, const BoundingBox& b) {
   return (a.min.array() <= b.max.array()).all() && (b.min.array() <= a.max.array()).all();
@@ -38,37 +39,20 @@ bool boxes_meet(const BoundingBox& a, const BoundingBox& b) {
 
 //! Appends the faces of `m` (those listed in `faces`, all when null) whose
 //! bounding box meets `reach` (all when it is empty) to the face graph `sm`
-//! of the distance queries: vertices shared where the faces form a
-//! 2-manifold, copied where they do not (distances ignore connectivity).
+//! of the distance queries (geometry's append_distance_patch()).
 void append(SurfaceMesh& sm, const Mesh& m, const std::vector<int>* faces = nullptr, const BoundingBox& reach = {}) {
-  std::vector<SurfaceMesh::Vertex_index> index(m.num_vertices());
-  std::vector<char> made(m.num_vertices(), 0);
-  auto point = [&](int v) {
-    const Vec3& p = m.vertices[static_cast<std::size_t>(v)];
-    return Epick::Point_3(p.x(), p.y(), p.z());
-  };
-  auto add = [&](const Triangle& t) {
-    if (!reach.is_empty()) {
-      BoundingBox fb;
-      for (int v : t) fb.extend(m.vertices[static_cast<std::size_t>(v)]);
-      if (!boxes_meet(fb, reach)) return;
-    }
-    std::array<SurfaceMesh::Vertex_index, 3> h;
-    for (std::size_t k = 0; k < 3; ++k) {
-      const auto v = static_cast<std::size_t>(t[k]);
-      if (!made[v]) {
-        index[v] = sm.add_vertex(point(t[k]));
-        made[v] = 1;
-      }
-      h[k] = index[v];
-    }
-    if (sm.add_face(h[0], h[1], h[2]) == SurfaceMesh::null_face())
-      sm.add_face(sm.add_vertex(point(t[0])), sm.add_vertex(point(t[1])), sm.add_vertex(point(t[2])));
+  if (reach.is_empty()) return detail::append_distance_patch(sm, m, faces);
+  std::vector<int> near;
+  auto keep = [&](int f) {
+    BoundingBox fb;
+    for (int v : m.faces[static_cast<std::size_t>(f)]) fb.extend(m.vertices[static_cast<std::size_t>(v)]);
+    if (boxes_meet(fb, reach)) near.push_back(f);
   };
   if (faces)
-    for (int f : *faces) add(m.faces[static_cast<std::size_t>(f)]);
+    for (int f : *faces) keep(f);
   else
-    for (const Triangle& t : m.faces) add(t);
+    for (std::size_t f = 0; f < m.num_faces(); ++f) keep(static_cast<int>(f));
+  detail::append_distance_patch(sm, m, &near);
 }
 
 //! Area of the part of triangle `t` covered by triangle `f`, both given by
