@@ -31,6 +31,8 @@ struct DecomposeArgs {
   bool exact = false;
   double max_deviation = 0.005;
   double max_overhang = 0.0;
+  double tolerance = 0.0;
+  double tolerance_abs = std::numeric_limits<double>::infinity();
   CommonOptions common;
 };
 
@@ -59,6 +61,8 @@ int run_decompose(const DecomposeArgs& args) {
   options.repair = !args.exact;
   options.max_deviation = args.max_deviation;
   options.max_overhang_deg = args.max_overhang;
+  options.tolerance_fraction = args.tolerance;
+  options.tolerance_abs = args.tolerance_abs;
 
   ConsoleProgress progress(std::cerr, args.common.quiet, stderr_is_terminal());
   options.progress = &progress;
@@ -177,6 +181,15 @@ void add_decompose_options(CLI::App& sub, DecomposeArgs& args) {
                  "height x tan(DEG) deep), so use it only when that is acceptable, e.g. for the noise of a "
                  "scanned model; it gives far fewer blocks. The thesis's published blocks lean up to 43 deg.")
       ->check(CLI::Range(0.0, kMaxOverhangAllowanceDeg));
+  sub.add_option("--tolerance", args.tolerance,
+                 "Deviation allowed, as a fraction of the bounding-box diagonal (default 0: exact blocks). "
+                 "Touching blocks are merged into the shape a 3-axis machine mills of their union (undercuts "
+                 "filled) while the symmetric Hausdorff distance between the model made and the input stays "
+                 "within it; every block stays an exact height field and blocks do not overlap")
+      ->check(CLI::NonNegativeNumber);
+  sub.add_option("--tolerance-abs", args.tolerance_abs,
+                 "Deviation allowed in model units (with --tolerance the smaller wins)")
+      ->check(CLI::NonNegativeNumber);
   sub.add_option("--grid-factor", args.grid_factor,
                  "Grid spacing = average edge length x G (default 1; smaller is finer and slower)")
       ->check(CLI::PositiveNumber);

@@ -31,6 +31,7 @@ struct ValidateArgs {
   std::string mesh;
   std::string outdir;
   std::optional<double> max_overhang;  // --max-overhang: overrides the recorded allowance
+  std::optional<double> tolerance;     // --tolerance: overrides the recorded tolerance (fraction of the diagonal)
   CommonOptions common;
 };
 
@@ -48,7 +49,8 @@ struct RecordedRepair {
 
 //! Reads decomposition.json and the block files it lists.
 std::vector<ValidationBlock> read_decomposition(const fs::path& outdir, ValidationLimits& limits,
-                                                std::optional<RecordedRepair>& repair, double& max_overhang_deg) {
+                                                std::optional<RecordedRepair>& repair, double& max_overhang_deg,
+                                                double& tolerance_fraction) {
   const fs::path path = outdir / "decomposition.json";
   std::ifstream in(path);
   if (!in) throw IoError(path.string() + ": cannot open (is this a folder written by subfab decompose?)");
@@ -68,6 +70,7 @@ std::vector<ValidationBlock> read_decomposition(const fs::path& outdir, Validati
     if (p.contains("max_height") && !p["max_height"].is_null()) limits.max_height = p["max_height"].get<double>();
     if (p.contains("machine") && !p["machine"].is_null()) limits.machine = json_vec(p["machine"], "parameters.machine");
     max_overhang_deg = p.contains("max_overhang_deg") ? p["max_overhang_deg"].get<double>() : 0.0;
+    tolerance_fraction = p.contains("tolerance_fraction") ? p["tolerance_fraction"].get<double>() : 0.0;
     std::vector<ValidationBlock> blocks;
     for (const Json& b : doc.at("blocks")) {
       ValidationBlock vb;
@@ -181,9 +184,10 @@ int run_validate(const ValidateArgs& args) {
   Mesh input = read_mesh(args.mesh);  // IoError / InvalidMeshError: exit 2
   ValidationOptions options;
   std::optional<RecordedRepair> repair;
-  double recorded_overhang = 0.0;
+  double recorded_overhang = 0.0, recorded_tolerance = 0.0;
   const std::vector<ValidationBlock> blocks =
-      read_decomposition(args.outdir, options.limits, repair, recorded_overhang);
+      read_decomposition(args.outdir, options.limits, repair, recorded_overhang, recorded_tolerance);
+  const double tolerance_fraction = args.tolerance ? *args.tolerance : recorded_tolerance;
   const double overhang = args.max_overhang ? *args.max_overhang : recorded_overhang;
   try {
     options.normal_tolerance = height_field_normal_tolerance(overhang);
@@ -222,8 +226,19 @@ int run_validate(const ValidateArgs& args) {
     repair_note = note.str();
     if (!args.common.quiet) progress.warn(repair_note);
   }
-  const ValidationReport report = validate_decomposition(input, blocks, options);
   const double diagonal = bounding_box(input).diagonal();
+  options.tolerance = tolerance_fraction * diagonal;
+  std::string tolerance_note;
+  if (tolerance_fraction > 0) {
+    std::ostringstream note;
+    note << "NOTE: decomposition within a tolerance of " << tolerance_fraction << " x diagonal = "
+         << options.tolerance << " (" << (args.tolerance ? "--tolerance" : "as recorded")
+         << "): blocks may stick out of the input (check 4), samples within it count as covered (check 5), "
+            "and check 8 measures the deviation of the model made";
+    tolerance_note = note.str();
+    if (!args.common.quiet) progress.warn(tolerance_note);
+  }
+  const ValidationReport report = validate_decomposition(input, blocks, options);
 
   if (args.common.json) {
     nlohmann::ordered_json j;
@@ -232,6 +247,13 @@ int run_validate(const ValidateArgs& args) {
     j["num_blocks"] = blocks.size();
     j["passed"] = report.passed();
     j["max_overhang_deg"] = overhang;
+    j["tolerance_fraction"] = tolerance_fraction;
+    if (options.tolerance > 0)
+      j["deviation"] = {{"num_sticking_out", report.num_filled},
+                        {"to_input", report.deviation_to_input},
+                        {"from_input", report.deviation_from_input},
+                        {"max_fraction", std::max(report.deviation_to_input, report.deviation_from_input) / diagonal},
+                        {"error_bound", report.deviation_error}};
     if (repair)
       j["repaired_input"] = {{"mesh", (fs::path(args.outdir) / repair->mesh).string()},
                              {"max_deviation", repair->max_deviation},
@@ -254,6 +276,7 @@ int run_validate(const ValidateArgs& args) {
     out << "validate " << args.outdir << " against " << args.mesh << " (" << blocks.size() << " blocks)\n";
     if (repair) out << "  " << repair_note << "\n";
     if (overhang > 0) out << "  " << overhang_note << "\n";
+    if (!tolerance_note.empty()) out << "  " << tolerance_note << "\n";
     int k = 1;
     for (const CheckReport& c : report.checks) {
       out << "  " << k++ << ". " << (c.passed ? "PASS" : "FAIL") << "  " << std::left << std::setw(62) << c.name
@@ -276,6 +299,10 @@ void add_validate_options(CLI::App& sub, ValidateArgs& args) {
                  "Overhang allowance of check 2, degrees past vertical (default: the one decompose recorded "
                  "in decomposition.json, 0 when none; 0 = exact height fields)")
       ->check(CLI::Range(0.0, kMaxOverhangAllowanceDeg));
+  sub.add_option("--tolerance", args.tolerance,
+                 "Deviation allowed, fraction of the bounding-box diagonal (default: the one decompose recorded "
+                 "in decomposition.json, 0 when none = every block inside the input)")
+      ->check(CLI::NonNegativeNumber);
 }
 
 const RegisterCommand kRegisterValidate(make_command<ValidateArgs>(

@@ -20,6 +20,7 @@
 #include "subfab/fidelity/find_infeasible_features.h"
 #include "subfab/decompose/grow_boxes.h"
 #include "subfab/decompose/merge_blocks.h"
+#include "subfab/decompose/merge_within_tolerance.h"
 #include "subfab/decompose/orient_mesh.h"
 #include "subfab/decompose/resolve_overlaps.h"
 #include "subfab/decompose/select_cover.h"
@@ -44,6 +45,10 @@ void check_options(const DecomposeOptions& o) {
   if (!(o.cover_time_limit_s > 0)) throw InvalidArgumentError("the cover time limit must be positive");
   if (!(o.max_deviation > 0) || !std::isfinite(o.max_deviation))
     throw InvalidArgumentError("--max-deviation must be a positive fraction of the bounding-box diagonal");
+  if (std::isnan(o.tolerance_fraction) || o.tolerance_fraction < 0 || !std::isfinite(o.tolerance_fraction))
+    throw InvalidArgumentError("--tolerance must be a fraction of the bounding-box diagonal >= 0");
+  if (std::isnan(o.tolerance_abs) || o.tolerance_abs < 0)
+    throw InvalidArgumentError("--tolerance-abs must be a length in model units >= 0");
   overhang_sine(o.max_overhang_deg);  // throws on a value outside [0, 45] degrees
 }
 
@@ -108,6 +113,7 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
   const double diagonal = bounding_box(input).diagonal();
   result.max_height = std::min(options.max_height_fraction * diagonal, options.max_height_abs);
   result.max_overhang_deg = options.max_overhang_deg;
+  result.tolerance = std::min(options.tolerance_fraction * diagonal, options.tolerance_abs);
   const double overhang = options.max_overhang_deg;
   const Vec3 machine = options.machine ? *options.machine : Vec3::Constant(std::numeric_limits<double>::infinity());
 
@@ -286,6 +292,24 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
       result.num_merges = merged.num_merges;
     } else {
       result.blocks = std::move(carved.blocks);
+    }
+    // 8. fewer blocks within the tolerance (issue 17): merges into milled shapes
+    if (result.tolerance > 0) {
+      const auto tt = Clock::now();
+      ToleranceMergeOptions to;
+      to.tolerance = result.tolerance;
+      to.max_height = result.max_height;
+      to.machine_size = machine;
+      to.progress = progress;
+      ToleranceMergeResult merged = merge_within_tolerance(result.canonical, std::move(result.blocks), to);
+      result.blocks = std::move(merged.blocks);
+      result.filled = std::move(merged.filled);
+      result.deviation_bound = merged.max_deviation;
+      result.num_tolerance_merges = merged.num_merges;
+      result.timings.tolerance = seconds_since(tt);
+      if (progress)
+        progress->info(std::to_string(merged.num_merges) + " merges within the tolerance (" +
+                       std::to_string(merged.num_candidates) + " milled shapes evaluated)");
     }
     result.timings.carve = seconds_since(t);
   }

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "subfab/decompose/export_decomposition.h"
 
+#include <algorithm>
+
 #include <nlohmann/json.hpp>
 
 #include <cmath>
@@ -128,7 +130,9 @@ std::string decomposition_json(const Mesh& input, const DecomposeResult& result,
                        {"machine", o.machine ? vec_json(*o.machine) : Json(nullptr)},
                        {"orient", o.orient},
                        {"grid_factor", o.grid_factor},
-                       {"max_overhang_deg", result.max_overhang_deg}};
+                       {"max_overhang_deg", result.max_overhang_deg},
+                       {"tolerance", result.tolerance},
+                       {"tolerance_fraction", diagonal > 0 ? result.tolerance / diagonal : 0.0}};
   Json list = Json::array();
   double total = 0.0, smallest = std::numeric_limits<double>::infinity(), steepest = 0.0;
   for (std::size_t i = 0; i < blocks.size(); ++i) {
@@ -156,12 +160,16 @@ std::string decomposition_json(const Mesh& input, const DecomposeResult& result,
   doc["summary"] = {{"num_blocks", blocks.size()},
                     {"material_volume_fraction", input_volume > 0 ? total / input_volume : 0.0},
                     {"min_block_volume_fraction", blocks.empty() || input_volume <= 0 ? 0.0 : smallest / input_volume},
-                    {"max_overhang_deg", steepest}};
+                    {"max_overhang_deg", steepest},
+                    {"num_tolerance_merges", result.num_tolerance_merges},
+                    {"num_sticking_out", std::count(result.filled.begin(), result.filled.end(), char{1})},
+                    {"deviation_bound", result.deviation_bound},
+                    {"deviation_bound_fraction", diagonal > 0 ? result.deviation_bound / diagonal : 0.0}};
   auto ms = [](double s) { return std::round(s * 1000.0) / 1000.0; };
   const DecomposeTimings& t = result.timings;
   doc["timings_s"] = {{"orient", ms(t.orient)}, {"field", ms(t.field)},     {"grow", ms(t.grow)},
                       {"cover", ms(t.cover)},   {"resolve", ms(t.resolve)}, {"carve", ms(t.carve)},
-                      {"total", ms(t.total)}};
+                      {"tolerance", ms(t.tolerance)}, {"total", ms(t.total)}};
   return doc.dump(2) + "\n";
 }
 

@@ -3,6 +3,7 @@
 // driver of all seven; the exact booleans and the coverage distances are in
 // validate_booleans.cpp.
 #include "subfab/validate/validate_decomposition.h"
+#include "subfab/validate/measure_fill_deviation.h"
 
 #include <algorithm>
 #include <atomic>
@@ -279,7 +280,10 @@ ValidationReport validate_decomposition(const Mesh& input, const std::vector<Val
   report.checks.push_back(overlap);
 
   // 4. inside the input
-  CheckReport inside = named_check("inside the input (volume outside <= 1e-6 of the block)");
+  const bool tolerant = options.tolerance > 0;
+  std::vector<std::size_t> filled;  // blocks sticking out of the input (checked by check 8)
+  CheckReport inside = named_check(tolerant ? "inside the input, or sticking out within the tolerance (check 8)"
+                                            : "inside the input (volume outside <= 1e-6 of the block)");
   {
     StageScope stage(progress, "check: inside the input");
     std::vector<double> out(n, 0.0);
@@ -300,24 +304,30 @@ ValidationReport validate_decomposition(const Mesh& input, const std::vector<Val
         continue;
       }
       const double ratio = out[i] / std::max(std::abs(volumes[i]), 1e-300);
+      if (tolerant && ratio > options.outside_tolerance) {
+        filled.push_back(i);
+        continue;
+      }
       worst = std::max(worst, ratio);
       if (ratio > options.outside_tolerance)
         add_failure(inside, block_name(i) + ": " + fmt("%.6g", out[i]) + " outside the input (" +
                                 fmt("%.3g", ratio) + " of the block)");
     }
     inside.summary = "worst ratio outside " + fmt("%.3g", worst);
+    if (tolerant) inside.summary += " (" + std::to_string(filled.size()) + " block(s) sticking out: check 8)";
   }
   report.checks.push_back(inside);
 
   // 5. coverage
-  CheckReport coverage = named_check("surface coverage (samples within 1e-5 x diagonal of a block)");
+  CheckReport coverage = named_check(tolerant ? "surface coverage (samples within the tolerance of a block)"
+                                              : "surface coverage (samples within 1e-5 x diagonal of a block)");
   {
     StageScope stage(progress, "check: coverage");
     std::vector<const Mesh*> meshes;
     for (const auto& b : blocks) meshes.push_back(&b.mesh);
     CoverageOptions copt;
     copt.num_samples = options.num_coverage_samples;
-    copt.tolerance = options.coverage_tolerance * diagonal;
+    copt.tolerance = std::max(options.coverage_tolerance * diagonal, options.tolerance);
     const CoverageReport c = surface_coverage(input, meshes, copt);
     coverage.summary = std::to_string(c.num_samples) + " samples, max distance " +
                        fmt("%.3g", c.max_distance / std::max(diagonal, 1e-300)) + " x diagonal";
@@ -408,6 +418,44 @@ ValidationReport validate_decomposition(const Mesh& input, const std::vector<Val
     machine.summary = std::to_string(checked) + " machine meshes compared face by face";
   }
   report.checks.push_back(machine);
+
+  // 8. within the tolerance
+  if (tolerant) {
+    CheckReport within = named_check("within the tolerance (symmetric Hausdorff distance of input ∪ blocks to the input)");
+    StageScope stage(progress, "check: tolerance");
+    const FillDeviationMeter meter(input);
+    std::vector<const Mesh*> sticking;
+    for (std::size_t i : filled) sticking.push_back(&blocks[i].mesh);
+    std::vector<FillDeviation> dev(filled.size());
+    const double error = options.tolerance_error * options.tolerance;
+    std::atomic<std::size_t> done{0};
+    parallel_for(0, filled.size(), [&](std::size_t k) {
+      dev[k] = meter.measure(*sticking[k], sticking, {.reach = options.tolerance, .error = error});
+      if (progress) progress->update(++done, filled.size());
+    });
+    report.num_filled = filled.size();
+    report.deviation_error = error;
+    for (std::size_t k = 0; k < filled.size(); ++k) {
+      const std::string who = block_name(filled[k]);
+      if (!dev[k].failure.empty()) {
+        add_failure(within, who + ": " + dev[k].failure);
+        continue;
+      }
+      report.deviation_to_input = std::max(report.deviation_to_input, dev[k].to_input);
+      report.deviation_from_input = std::max(report.deviation_from_input, dev[k].from_input);
+      if (dev[k].bound() > options.tolerance)
+        add_failure(within, who + ": deviation up to " + fmt("%.6g", dev[k].bound()) + " > tolerance " +
+                                fmt("%.6g", options.tolerance) + " (sticks out " + fmt("%.6g", dev[k].to_input) +
+                                ", buries the input " + fmt("%.6g", dev[k].from_input) + ", error bound " +
+                                fmt("%.3g", error) + ")");
+    }
+    within.summary = std::to_string(filled.size()) + " block(s) sticking out; deviation " +
+                     fmt("%.3g", std::max(report.deviation_to_input, report.deviation_from_input) /
+                                     std::max(diagonal, 1e-300)) +
+                     " x diagonal (+- " + fmt("%.2g", error / std::max(diagonal, 1e-300)) + "), tolerance " +
+                     fmt("%.3g", options.tolerance / std::max(diagonal, 1e-300));
+    report.checks.push_back(within);
+  }
 
   // Milled shapes (informational; exact blocks cost a height-field test).
   if (options.measure_milled_shapes) {

@@ -40,6 +40,9 @@ struct DecomposeOptions {
                                  // base ([0, 45]; 0 = exact height fields). A 3-axis machine cannot cut such
                                  // faces (it leaves material under them); the thesis's blocks have them.
                                  // The frame search and the thin-feature repair stay exact (conservative).
+  double tolerance_fraction = 0.0;  // --tolerance: deviation allowed, x bbox diagonal (0 = exact blocks only, the
+                                    // thesis's exact decomposition); see merge_within_tolerance()
+  double tolerance_abs = std::numeric_limits<double>::infinity();  // --tolerance-abs: model units; the smaller wins
   Progress* progress = nullptr; // stage progress (nullptr = silent)
 };
 
@@ -47,6 +50,7 @@ struct DecomposeOptions {
 struct DecomposeTimings {
   double orient = 0, field = 0, grow = 0, cover = 0, resolve = 0, carve = 0, total = 0;
   double repair = 0;  // local repair of infeasible features (0 when none), not part of orient
+  double tolerance = 0;  // merges within the tolerance (merge_within_tolerance), part of carve
 };
 
 //! Result of decompose().
@@ -63,6 +67,11 @@ struct DecomposeResult {
   double max_height = std::numeric_limits<double>::infinity();  // the height limit used (model units)
   double max_overhang_deg = 0.0;  // the overhang allowance used (degrees; 0 = exact)
   std::vector<Block> blocks; // the blocks, canonical frame
+  double tolerance = 0.0;    // the deviation allowed (model units; 0 = exact: every block inside the input)
+  std::vector<char> filled;  // per block (empty when tolerance = 0): 1 when it sticks out of the input (a milled
+                             // shape holding material under an undercut, within the tolerance)
+  double deviation_bound = 0.0;  // largest deviation bound measured by the merges within the tolerance (model units)
+  std::size_t num_tolerance_merges = 0;  // merges into milled shapes within the tolerance
   DecomposeTimings timings;
   // statistics
   std::size_t num_grown_boxes = 0;

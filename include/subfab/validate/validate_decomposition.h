@@ -11,7 +11,11 @@
 //!   5. coverage: area-weighted samples of the input surface lie within
 //!      1e-5 x bbox diagonal of some block's boundary;
 //!   6. height and machine-size limits hold;
-//!   7. each machine mesh is its block moved rigidly (direction to +Z, base on z = 0).
+//!   7. each machine mesh is its block moved rigidly (direction to +Z, base on z = 0);
+//!   8. (decompositions within a tolerance T only) the model made, the input
+//!      with the blocks that stick out of it, lies within T of the input:
+//!      symmetric Hausdorff distance between the surfaces <= T (checks 4 and
+//!      5 then accept blocks sticking out and samples within T).
 #pragma once
 
 #include <cstddef>
@@ -159,6 +163,12 @@ struct ValidationOptions {
   double coverage_tolerance = 1e-5;   // check 5: distance / bbox diagonal
   double limit_tolerance = 1e-6;      // check 6 and 7: slack / bbox diagonal
   ValidationLimits limits;            // check 6
+  double tolerance = 0.0;             // deviation allowed (model units; the decomposition's --tolerance):
+                                      // when > 0, blocks may stick out of the input (check 4 lists them),
+                                      // check 5 accepts samples within it, and check 8 measures the model
+                                      // made (input ∪ blocks) against the input: symmetric Hausdorff
+                                      // distance between the surfaces (FillDeviationMeter) <= it
+  double tolerance_error = 0.02;      // check 8: error bound of the distances, fraction of the tolerance
   bool measure_milled_shapes = true;  // informational: each block's milled shape (milled_shape.h)
   double milled_hausdorff_error = 1e-5;  // error bound of its distances (fraction of the diagonal)
   Progress* progress = nullptr;       // progress per check (nullptr: silent)
@@ -177,6 +187,11 @@ struct CheckReport {
 struct ValidationReport {
   std::vector<CheckReport> checks;  // the seven checks, in order
   MilledShapesReport milled;        // informational, not a check (empty when not measured)
+  // check 8 (tolerance > 0): the deviation of the model made, model units
+  std::size_t num_filled = 0;       // blocks that stick out of the input
+  double deviation_to_input = 0.0;  // how far the blocks stick out (max over the filled blocks)
+  double deviation_from_input = 0.0;  // how deep the input surface lies under them
+  double deviation_error = 0.0;     // error bound of both
   bool passed() const {
     for (const CheckReport& c : checks)
       if (!c.passed) return false;
