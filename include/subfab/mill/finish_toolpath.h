@@ -1,0 +1,39 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file finish_toolpath.h
+//! Finishing: a parallel (zig-zag) raster of a ball-end mill that follows
+//! the drop-cutter surface of the block.
+//!
+//! Outline:
+//!  1. raster lines along x, `stepover` x diameter apart in y (the last on
+//!     the stock's far edge), joined at alternate ends by short links along
+//!     y, so the whole finish is one continuous cut;
+//!  2. along lines and links, points every `step` mm on the 0.001 mm grid,
+//!     each at its drop-cutter height (rounded up to 0.001 mm);
+//!  3. each segment is split at its midpoint while the drop-cutter height
+//!     there differs from the chord by more than `tolerance`; a segment too
+//!     short to split (a vertical wall between its ends) is replaced by a
+//!     vertical step up or down at the higher end, so the tool never goes
+//!     through the wall;
+//!  4. collinear moves are merged (within 0.0001 mm).
+#pragma once
+
+#include "subfab/mill/drop_cutter.h"
+#include "subfab/mill/toolpath.h"
+
+namespace subfab {
+
+struct FinishingOptions {
+  Tool tool{ToolShape::Ball, 6.0};  // --tool: the finishing end mill (ball or flat)
+  double stepover = 0.1;            // --stepover: fraction of the tool diameter between raster lines, (0, 1]
+  double step = 0.5;                // mm between base points along a line (> 0)
+  double tolerance = 0.002;         // mm: largest gap between a move and the drop-cutter surface
+  double safe_height = 5.0;         // mm above the stock top for rapid moves
+};
+
+//! The finishing toolpath of the mesh in `grid` (mm, machine frame, inside
+//! `stock`). Deterministic whatever the thread count (lines in parallel,
+//! written in order).
+//! \throw InvalidArgumentError when an option is out of range.
+Toolpath finish_toolpath(const TriangleGrid& grid, const Stock& stock, const FinishingOptions& options);
+
+}  // namespace subfab
