@@ -26,7 +26,7 @@ bool inside_xy(const TriangleGrid::Tri& t, double x, double y) {
 
 //! Height of the plane of t above (x, y) (t not vertical).
 double plane_z(const TriangleGrid::Tri& t, double x, double y) {
-  const Vec3& n = t.normal;
+  const Vec3& n = t.normal;  // either orientation: the ratio below does not depend on it
   return t.a.z() - (n.x() * (x - t.a.x()) + n.y() * (y - t.a.y())) / n.z();
 }
 
@@ -77,7 +77,8 @@ double contact(const TriangleGrid::Tri& t, const Tool& tool, double x, double y)
   const std::array<std::pair<const Vec3*, const Vec3*>, 3> edges = {{{&t.a, &t.b}, {&t.b, &t.c}, {&t.c, &t.a}}};
   for (const auto& [p, q] : edges)
     best = std::max(best, ball ? ball_edge(*p, *q, x, y, r) : flat_edge(*p, *q, x, y, r));
-  const Vec3& n = t.normal;
+  // Facet: the side facing up (a triangle soup's orientation does not matter).
+  const Vec3 n = t.normal.z() < 0.0 ? Vec3(-t.normal) : t.normal;
   if (n.z() > 1e-12) {
     const double nxy = std::hypot(n.x(), n.y());
     double qx = x, qy = y;  // contact point's xy
