@@ -36,7 +36,12 @@ inline Rs274Summary check_rs274(const std::string& text, const Rs274Bounds& boun
   int n = 0;
   bool units = false, spindle = false, have_feed = false, ended = false;
   std::vector<std::string> lines;
-  auto problem = [&](const std::string& what) { s.problems.push_back("line " + std::to_string(n) + ": " + what); };
+  // Messages built by append (GCC 12 warns falsely on "literal" + std::string).
+  auto problem = [&](const std::string& a, const char* b = "") {
+    std::string msg = "line ";
+    msg.append(std::to_string(n)).append(": ").append(a).append(b);
+    s.problems.push_back(msg);
+  };
   while (std::getline(in, line)) {
     ++n;
     lines.push_back(line);
@@ -59,7 +64,7 @@ inline Rs274Summary check_rs274(const std::string& text, const Rs274Bounds& boun
       const std::string number = w.substr(1);
       if (letter == 'G' || letter == 'M') {
         const std::set<std::string>& ok = letter == 'G' ? g_ok : m_ok;
-        if (!ok.count(w)) problem("word " + w + " not in the common GRBL/LinuxCNC subset");
+        if (!ok.count(w)) problem(w, " is not in the common GRBL/LinuxCNC subset");
         if (w == "G21") units = true;
         if (w == "G0" || w == "G1") {
           motion = true;
@@ -75,15 +80,15 @@ inline Rs274Summary check_rs274(const std::string& text, const Rs274Bounds& boun
         }
         if (w == "M2" || w == "M30") ended = true;
       } else if (letter == 'X' || letter == 'Y' || letter == 'Z' || letter == 'F' || letter == 'S') {
-        if (!std::regex_match(number, decimal)) problem("number of " + w + " is not -d.ddd");
+        if (!std::regex_match(number, decimal)) problem(w, ": the number is not -d.ddd");
         const double v = std::strtod(number.c_str(), nullptr);
-        if (letter == 'X' && (v < 0 || v > bounds.x)) problem(w + " outside the stock");
-        if (letter == 'Y' && (v < 0 || v > bounds.y)) problem(w + " outside the stock");
-        if (letter == 'Z' && (v < 0 || v > bounds.z)) problem(w + " outside [0, safe height]");
+        if (letter == 'X' && (v < 0 || v > bounds.x)) problem(w, " outside the stock");
+        if (letter == 'Y' && (v < 0 || v > bounds.y)) problem(w, " outside the stock");
+        if (letter == 'Z' && (v < 0 || v > bounds.z)) problem(w, " outside [0, safe height]");
         if (letter == 'F') have_feed = v > 0;
-        if ((letter == 'X' || letter == 'Y' || letter == 'Z') && !motion) problem(w + " without G0 or G1 on its line");
+        if ((letter == 'X' || letter == 'Y' || letter == 'Z') && !motion) problem(w, " without G0 or G1 on its line");
       } else {
-        problem("unexpected word " + w);
+        problem(w, ": unexpected word");
       }
     }
     if (g1 && !have_feed) problem("G1 before any feed");
