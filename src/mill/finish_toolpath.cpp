@@ -21,28 +21,44 @@ struct Refiner {
 
   double height(double x, double y) const { return ceil_mm(drop_cutter(grid, tool, x, y)); }
 
-  //! Appends the points after `a` up to and including `b` (both on the
-  //! drop-cutter surface) so that the polyline stays within tolerance of it.
-  void refine(const Vec3& a, const Vec3& b, std::vector<Vec3>& out, int depth) const {
+  //! The point on the 0.001 mm grid halfway between a and b, at its height.
+  Vec3 midpoint(const Vec3& a, const Vec3& b) const {
     const double mx = round_mm(0.5 * (a.x() + b.x())), my = round_mm(0.5 * (a.y() + b.y()));
-    const bool splittable = depth < 40 && !(mx == a.x() && my == a.y()) && !(mx == b.x() && my == b.y());
-    double zm = std::max(a.z(), b.z());
+    return Vec3(mx, my, height(mx, my));
+  }
+
+  //! How far p's height is from the chord a-b at p's xy.
+  static double off_chord(const Vec3& a, const Vec3& b, const Vec3& p) {
+    const Eigen::Vector2d u = b.head<2>() - a.head<2>();
+    const double len2 = u.squaredNorm();
+    const double t = len2 > 0 ? (p.head<2>() - a.head<2>()).dot(u) / len2 : 0.5;
+    return std::abs(p.z() - (a.z() + t * (b.z() - a.z())));
+  }
+
+  static bool same_xy(const Vec3& p, const Vec3& q) { return p.x() == q.x() && p.y() == q.y(); }
+
+  //! Appends the points after `a` up to and including `b` (both on the
+  //! drop-cutter surface; m the surface point halfway between them) so that
+  //! the polyline stays within tolerance of it. The segment is accepted when
+  //! the surface at its midpoint and at its quarter points is within
+  //! tolerance of the chord: a midpoint alone can sit on the chord of an
+  //! S-shaped stretch (a crease then a ridge) whose ridge the chord cuts.
+  //! The quarter points are the halves' midpoints, so nothing is computed
+  //! twice.
+  void refine(const Vec3& a, const Vec3& m, const Vec3& b, std::vector<Vec3>& out, int depth) const {
+    const bool splittable = depth < 40 && !same_xy(m, a) && !same_xy(m, b);
     if (splittable) {
-      zm = height(mx, my);
-      const double len2 = (b.head<2>() - a.head<2>()).squaredNorm();
-      const double t = len2 > 0 ? (Eigen::Vector2d(mx, my) - a.head<2>()).dot(b.head<2>() - a.head<2>()) / len2 : 0.5;
-      const double chord = a.z() + t * (b.z() - a.z());
-      if (std::abs(zm - chord) <= tolerance) {
+      const Vec3 q1 = midpoint(a, m), q3 = midpoint(m, b);
+      if (off_chord(a, b, m) <= tolerance && off_chord(a, b, q1) <= tolerance && off_chord(a, b, q3) <= tolerance) {
         out.push_back(b);
         return;
       }
-      const Vec3 m(mx, my, zm);
-      refine(a, m, out, depth + 1);
-      refine(m, b, out, depth + 1);
+      refine(a, q1, m, out, depth + 1);
+      refine(m, q3, b, out, depth + 1);
       return;
     }
     // Too short to split: a vertical step at the higher end.
-    const double top = std::max({a.z(), b.z(), zm});
+    const double top = std::max({a.z(), b.z(), m.z()});
     if (top > a.z()) out.push_back(Vec3(a.x(), a.y(), top));
     out.push_back(Vec3(b.x(), b.y(), top));
     if (top > b.z()) out.push_back(b);
@@ -58,7 +74,7 @@ struct Refiner {
       const double x = i == n ? x1 : round_mm(x0 + (x1 - x0) * i / n);
       const double y = i == n ? y1 : round_mm(y0 + (y1 - y0) * i / n);
       const Vec3 next(x, y, height(x, y));
-      refine(prev, next, out, 0);
+      refine(prev, midpoint(prev, next), next, out, 0);
       prev = next;
     }
   }

@@ -10,7 +10,9 @@
 //!  2. along lines and links, points every `step` mm on the 0.001 mm grid,
 //!     each at its drop-cutter height (rounded up to 0.001 mm);
 //!  3. each segment is split at its midpoint while the drop-cutter height
-//!     there differs from the chord by more than `tolerance`; a segment too
+//!     there or at either quarter point differs from the chord by more than
+//!     `tolerance` (the midpoint alone misses S-shaped stretches, a crease
+//!     then a ridge, whose chord crosses the surface); a segment too
 //!     short to split (a vertical wall between its ends) is replaced by a
 //!     vertical step up or down at the higher end, so the tool never goes
 //!     through the wall;
