@@ -19,6 +19,10 @@ double round_mm(double x);
 //! z rounded up to the 0.001 mm grid (rounding never lowers the tool).
 double ceil_mm(double z);
 
+//! `n` coordinates from 0 to `length`, evenly spaced at most `spacing`
+//! apart, on the 0.001 mm grid (n >= 1; one, 0, when length is 0).
+std::vector<double> spaced(double length, double spacing);
+
 //! Appends moves, merging a move into the previous one of the same kind when
 //! every point so dropped lies within `tolerance` (mm) of the merged segment.
 class PathBuilder {

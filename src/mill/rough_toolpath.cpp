@@ -13,14 +13,7 @@ namespace {
 
 using detail::ceil_mm;
 using detail::round_mm;
-
-//! `n` coordinates from 0 to `length` on the 0.001 mm grid (n >= 1).
-std::vector<double> spaced(double length, double spacing) {
-  const int n = std::max(1, static_cast<int>(std::ceil(length / spacing - 1e-9)) + 1);
-  std::vector<double> out(static_cast<std::size_t>(n));
-  for (int i = 0; i < n; ++i) out[static_cast<std::size_t>(i)] = n == 1 ? 0.0 : round_mm(length * i / (n - 1));
-  return out;
-}
+using detail::spaced;
 
 struct Samples {
   std::vector<double> xs, ys;

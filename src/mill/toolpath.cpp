@@ -32,6 +32,13 @@ double ceil_mm(double z) {
   return r == 0.0 ? 0.0 : r;
 }
 
+std::vector<double> spaced(double length, double spacing) {
+  const int n = std::max(1, static_cast<int>(std::ceil(length / spacing - 1e-9)) + 1);
+  std::vector<double> out(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) out[static_cast<std::size_t>(i)] = n == 1 ? 0.0 : round_mm(length * i / (n - 1));
+  return out;
+}
+
 namespace {
 //! Distance from p to the segment a-b.
 double segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {

@@ -16,7 +16,16 @@
 //!     short to split (a vertical wall between its ends) is replaced by a
 //!     vertical step up or down at the higher end, so the tool never goes
 //!     through the wall;
-//!  4. collinear moves are merged (within 0.0001 mm).
+//!  4. cross pass: where the drop-cutter surface rises towards +-y steeper
+//!     than `cross_angle` (and steeper than towards +-x), the x raster's
+//!     effective stepover along the wall grows as 1/cos of the slope and
+//!     leaves tall scallops; lines along y, `stepover` x diameter apart in
+//!     x, sweep those runs (grown by the tool radius each side, gaps up to a
+//!     diameter bridged), refined as in 2-3. Each run is entered by rapids
+//!     at a height proven above the material the x raster left (the highest
+//!     mesh point within 2R + stepover/2 of the path, plus the tolerance,
+//!     the ball's profile at stepover/2 and 1 mm), then a plunge;
+//!  5. collinear moves are merged (within 0.0001 mm).
 #pragma once
 
 #include "subfab/mill/drop_cutter.h"
@@ -30,6 +39,8 @@ struct FinishingOptions {
   double step = 0.5;                // mm between base points along a line (> 0)
   double tolerance = 0.002;         // mm: largest gap between a move and the drop-cutter surface
   double safe_height = 5.0;         // mm above the stock top for rapid moves
+  double cross_angle = 50.0;        // --cross-angle: degrees; a second raster along y where the surface is steeper
+                                    // than this towards +-y (and than towards +-x); >= 90: none
 };
 
 //! The finishing toolpath of the mesh in `grid` (mm, machine frame, inside
