@@ -61,6 +61,7 @@ MilledBlock mill_block(const StockSetup& setup, const std::vector<std::string>& 
   const HeightMap target = target_heights(setup.part, milled, footprint);
   const HeightMap ideal = ideal_surface(grid, o.finishing.tool, milled);
   out.check = check_milling(milled, target, footprint, ideal, o.check);
+  if (o.picture) out.picture = draw_milling_map(milled, target, footprint, ideal, o.check);
   return out;
 }
 

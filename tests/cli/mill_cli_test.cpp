@@ -38,7 +38,7 @@ TEST(MillCli, WritesCheckedGcodeAndTheSameBytesWhateverThreads) {
     EXPECT_EQ(slurp(entry.path()), slurp(dir / "gcode" / name)) << name;
     ++files;
   }
-  EXPECT_EQ(files, 3u);  // two blocks and mill.json
+  EXPECT_EQ(files, 5u);  // two blocks, their pictures and mill.json
 
   const auto doc = nlohmann::json::parse(slurp(dir / "g1" / "mill.json"));
   EXPECT_EQ(doc["format"], "subfab.mill");
@@ -47,7 +47,7 @@ TEST(MillCli, WritesCheckedGcodeAndTheSameBytesWhateverThreads) {
   ASSERT_EQ(doc["blocks"].size(), 2u);
   for (const auto& b : doc["blocks"]) {
     for (const char* key : {"id", "gcode", "axis", "stock_mm", "time_s", "max_gouge_mm", "max_residual_mm",
-                            "mean_residual_mm", "unreachable_area_mm2", "foot_area_mm2", "passed"})
+                            "mean_residual_mm", "unreachable_area_mm2", "foot_area_mm2", "picture", "passed"})
       EXPECT_TRUE(b.contains(key)) << key;
     EXPECT_LE(b["max_gouge_mm"].get<double>(), doc["parameters"]["resolution_mm"].get<double>());
     EXPECT_GT(b["time_s"].get<double>(), 0.0);
@@ -58,6 +58,10 @@ TEST(MillCli, WritesCheckedGcodeAndTheSameBytesWhateverThreads) {
     const auto words = test::check_rs274(gcode, {stock[0].get<double>() + 0.001, stock[1].get<double>() + 0.001, 1e9});
     EXPECT_TRUE(words.problems.empty()) << words.problems.front();
     EXPECT_EQ(words.last_code, "M30");
+    std::ifstream png(dir / "g1" / b["picture"].get<std::string>(), std::ios::binary);
+    char signature[4] = {};
+    png.read(signature, 4);
+    EXPECT_TRUE(png && signature[1] == 'P' && signature[2] == 'N' && signature[3] == 'G');
   }
   EXPECT_TRUE(doc["summary"]["passed"].get<bool>());
 }

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 
@@ -78,6 +79,25 @@ TEST(MillBlock, HemisphereOnASlabMatchesItsFormula) {
   EXPECT_GT(m.check.unreachable_area, 50.0);
   EXPECT_LT(m.check.unreachable_area, 302.0);
   EXPECT_GT(m.check.foot_area, 0.0);  // the fillet along the slab's walls
+
+  // The picture: one pixel per cell, the unreachable ring magenta, the cap
+  // and the slab green (residual below 0.02 mm), the table grey at a corner.
+  ASSERT_EQ(m.picture.width, 240);
+  ASSERT_EQ(m.picture.height, 240);
+  auto hue = [&](int x, int y) {
+    const std::uint8_t* p = &m.picture.pixels[(static_cast<std::size_t>(y) * 240 + x) * 3];
+    if (p[0] > p[1] + 60 && p[2] > p[1] + 60) return 'm';
+    if (p[1] > p[0] + 40 && p[1] > p[2] + 40) return 'g';
+    if (p[0] == p[1] && p[1] == p[2]) return 'n';
+    return '?';
+  };
+  EXPECT_EQ(hue(120, 120), 'g');  // the cap's top (image centre)
+  EXPECT_EQ(hue(40, 120), 'g');   // the open slab
+  EXPECT_EQ(hue(1, 1), 'n');      // the table, outside the block
+  std::size_t ring = 0;
+  for (int y = 0; y < 240; ++y)
+    for (int x = 0; x < 240; ++x) ring += hue(x, y) == 'm';
+  EXPECT_NEAR(static_cast<double>(ring) * 0.0625, m.check.unreachable_area, 1e-6);  // every unreachable cell
 
   // The simulated surface against the formula, independently of the check:
   // re-simulate the G-code and sample the cap and the open slab.
@@ -159,6 +179,27 @@ TEST(MillBlock, FinishingOnlyAndFlatFinishing) {
   EXPECT_LE(m.check.max_gouge, 0.01);
   EXPECT_EQ(m.rough.cut, 0.0);
   EXPECT_EQ(test::check_rs274(m.gcode, {}).num_pauses, 0);
+}
+
+// A wall facing -y at 70 degrees: the x raster crosses it at an effective
+// stepover of 0.6 / cos 70 = 1.75 mm; the cross pass (lines along y) follows
+// it and takes its scallops down to the flat-raster height.
+TEST(MillBlock, CrossPassFinishesWallsFacingY) {
+  const double rise = 8.0, run = rise / std::tan(70.0 * std::acos(-1.0) / 180.0);
+  const Mesh solid = height_field_solid(60, 30.0, [&](double, double y) {
+    return 3.0 + rise * std::clamp((y - 12.0) / run, 0.0, 1.0);
+  });
+  MillOptions o = test_options();
+  const StockSetup setup = place_in_stock(solid, 1.0, 4.0);
+  o.finishing.cross_angle = 90.0;
+  const MilledBlock x_only = mill_block(setup, {"wall"}, o);
+  o.finishing.cross_angle = 50.0;
+  const MilledBlock crossed = mill_block(setup, {"wall"}, o);
+  EXPECT_GT(x_only.check.max_residual, 0.2);
+  EXPECT_LT(crossed.check.max_residual, 0.5 * x_only.check.max_residual);
+  EXPECT_LE(crossed.check.max_gouge, 0.01);
+  EXPECT_EQ(crossed.simulation.num_rapid_cuts, 0u);
+  EXPECT_GT(crossed.finish.cut, x_only.finish.cut);
 }
 
 }  // namespace

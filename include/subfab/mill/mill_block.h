@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "subfab/mill/check_milling.h"
+#include "subfab/mill/draw_milling_map.h"
 #include "subfab/mill/finish_toolpath.h"
 #include "subfab/mill/rough_toolpath.h"
 #include "subfab/mill/write_gcode.h"
@@ -28,6 +29,7 @@ struct MillOptions {
   double stock_margin = 5.0;      // --stock-margin: mm of stock around the block in x and y and above it
   double resolution = 0.25;       // --resolution: mm, side of a simulation cell
   MillCheckOptions check;
+  bool picture = true;            // draw the top view of the check (MilledBlock::picture)
 };
 
 //! A block placed in its stock.
@@ -50,6 +52,7 @@ struct MilledBlock {
   SimulationStats simulation;
   MillCheck check;
   int num_gcode_lines = 0;
+  RgbImage picture{0, 0};            // draw_milling_map() of the check (empty unless options.picture)
 };
 
 //! Mills one placed block. `header` lines go first into the G-code's
