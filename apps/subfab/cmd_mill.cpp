@@ -37,7 +37,7 @@ struct MillArgs {
   std::optional<double> size, scale;
   std::string tool = "ball:6", rough_tool = "flat:8";
   double stepover = 0.1, stepdown = 3.0, allowance = 0.5, cross_angle = 50.0;
-  double feed = 1000.0, plunge = 300.0, rpm = 18000.0, rapid = 3000.0;
+  double feed = 1000.0, plunge = 300.0, rpm = 18000.0, rapid = 3000.0, accel = 500.0;
   double stock_margin = 5.0, resolution = 0.25;
   std::string dialect = "grbl";
   bool no_coolant = false;
@@ -113,6 +113,7 @@ int run_mill(const MillArgs& args) {
   o.roughing.allowance = args.allowance;
   o.gcode.feeds = {args.feed, args.plunge, args.rapid};
   o.gcode.rpm = args.rpm;
+  o.motion.accel = args.accel;
   o.gcode.coolant = !args.no_coolant;
   o.gcode.dialect = parse_dialect(args.dialect);
   o.stock_margin = args.stock_margin;
@@ -157,7 +158,7 @@ int run_mill(const MillArgs& args) {
       fs::remove(entry.path(), ec);
   }
   Json list = Json::array();
-  double total_time = 0.0, worst_gouge = 0.0;
+  double total_time = 0.0, total_no_accel = 0.0, worst_gouge = 0.0;
   bool passed = true;
   for (std::size_t i = 0; i < blocks.size(); ++i) {
     const MilledBlock& m = milled[i];
@@ -168,6 +169,7 @@ int run_mill(const MillArgs& args) {
     write_png(m.picture, gdir / block_name(blocks[i].id, ".png"));
     const double time = m.rough_time + m.finish_time;
     total_time += time;
+    total_no_accel += m.time_no_accel;
     worst_gouge = std::max(worst_gouge, m.check.max_gouge);
     passed = passed && block_passed(m);
     list.push_back({{"id", blocks[i].id},
@@ -175,6 +177,7 @@ int run_mill(const MillArgs& args) {
                     {"axis", blocks[i].axis},
                     {"stock_mm", {m.stock.x, m.stock.y, m.stock.z}},
                     {"time_s", time},
+                    {"time_no_accel_s", m.time_no_accel},
                     {"roughing_time_s", m.rough_time},
                     {"finishing_time_s", m.finish_time},
                     {"roughing_path_mm", lengths_json(m.rough)},
@@ -205,6 +208,7 @@ int run_mill(const MillArgs& args) {
                        {"stepdown_mm", args.stepdown},
                        {"allowance_mm", args.allowance},    {"feed_mm_per_min", args.feed},
                        {"plunge_mm_per_min", args.plunge},  {"rapid_mm_per_min", args.rapid},
+                       {"accel_mm_per_s2", args.accel},     {"junction_deviation_mm", o.motion.junction_deviation},
                        {"rpm", args.rpm},                   {"stock_margin_mm", args.stock_margin},
                        {"resolution_mm", args.resolution},  {"unreachable_tolerance_mm", o.check.unreachable_tolerance}};
   doc["picture_legend"] =
@@ -212,7 +216,8 @@ int run_mill(const MillArgs& args) {
       "grey table, tan fillet left at the walls' foot, magenta unreachable, green residual <= 0.02 mm, yellow "
       "0.1 mm, red >= 0.3 mm, blue gouge deeper than the resolution";
   doc["blocks"] = list;
-  doc["summary"] = {{"num_blocks", blocks.size()}, {"total_time_s", total_time}, {"max_gouge_mm", worst_gouge},
+  doc["summary"] = {{"num_blocks", blocks.size()}, {"total_time_s", total_time},
+                    {"total_time_no_accel_s", total_no_accel}, {"max_gouge_mm", worst_gouge},
                     {"passed", passed}};
   const fs::path json_path = gdir / "mill.json";
   std::ofstream jout(json_path, std::ios::binary);
@@ -239,7 +244,8 @@ int run_mill(const MillArgs& args) {
                     block_passed(m) ? "" : "  FAIL");
       t << row;
     }
-    t << "total " << fmt("%.1f", total_time / 60.0) << " min; max gouge " << fmt("%.4f", worst_gouge)
+    t << "total " << fmt("%.1f", total_time / 60.0) << " min (" << fmt("%.1f", total_no_accel / 60.0)
+      << " without acceleration); max gouge " << fmt("%.4f", worst_gouge)
       << " mm (limit: the resolution); G-code and mill.json in " << gdir.string() << "\n";
     if (!passed) t << "milling check FAILED: a block is gouged deeper than the resolution or a rapid move cuts\n";
     std::cout << t.str();
@@ -269,6 +275,9 @@ void add_mill_options(CLI::App& sub, MillArgs& args) {
   sub.add_option("--plunge", args.plunge, "Plunge feed, mm/min (default 300)")->check(CLI::PositiveNumber);
   sub.add_option("--rpm", args.rpm, "Spindle speed, rev/min (default 18000)")->check(CLI::PositiveNumber);
   sub.add_option("--rapid", args.rapid, "Rapid rate assumed by the time estimate, mm/min (default 3000)")
+      ->check(CLI::PositiveNumber);
+  sub.add_option("--accel", args.accel,
+                 "Acceleration assumed by the time estimate, mm/s^2, all axes (default 500, a hobby router)")
       ->check(CLI::PositiveNumber);
   sub.add_option("--stock-margin", args.stock_margin, "Stock around the block in x and y and above it, mm (default 5)")
       ->check(CLI::NonNegativeNumber);

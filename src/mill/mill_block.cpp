@@ -35,20 +35,24 @@ MilledBlock mill_block(const StockSetup& setup, const std::vector<std::string>& 
   if (o.rough) {
     paths.push_back(rough_toolpath(grid, setup.stock, o.roughing));
     out.rough = path_lengths(paths.back());
-    out.rough_time = machining_time(out.rough, o.gcode.feeds);
+    out.rough_time = machining_time(paths.back(), o.gcode.feeds, o.motion);
+    out.time_no_accel += machining_time(out.rough, o.gcode.feeds);
     tools.push_back(o.roughing.tool);
   }
   paths.push_back(finish_toolpath(grid, setup.stock, o.finishing));
   out.finish = path_lengths(paths.back());
-  out.finish_time = machining_time(out.finish, o.gcode.feeds);
+  out.finish_time = machining_time(paths.back(), o.gcode.feeds, o.motion);
+  out.time_no_accel += machining_time(out.finish, o.gcode.feeds);
   tools.push_back(o.finishing.tool);
 
   GcodeOptions go = o.gcode;
   go.header = header;
   char buf[160];
-  std::snprintf(buf, sizeof buf, "estimated time %.1f min: roughing %.1f, finishing %.1f (rapids at %g mm/min)",
-                (out.rough_time + out.finish_time) / 60.0, out.rough_time / 60.0, out.finish_time / 60.0,
-                o.gcode.feeds.rapid);
+  std::snprintf(buf, sizeof buf, "estimated time %.1f min: roughing %.1f, finishing %.1f",
+                (out.rough_time + out.finish_time) / 60.0, out.rough_time / 60.0, out.finish_time / 60.0);
+  go.header.push_back(buf);
+  std::snprintf(buf, sizeof buf, "rapids at %g mm/min, acceleration %g mm/s^2, junction deviation %g mm",
+                o.gcode.feeds.rapid, o.motion.accel, o.motion.junction_deviation);
   go.header.push_back(buf);
   out.gcode = write_gcode(paths, setup.stock, go);
 

@@ -16,6 +16,7 @@
 #include "subfab/mill/check_milling.h"
 #include "subfab/mill/draw_milling_map.h"
 #include "subfab/mill/finish_toolpath.h"
+#include "subfab/mill/machining_time.h"
 #include "subfab/mill/rough_toolpath.h"
 #include "subfab/mill/write_gcode.h"
 
@@ -25,6 +26,7 @@ struct MillOptions {
   RoughingOptions roughing;       // flat end mill, z levels
   FinishingOptions finishing;     // ball end mill, raster
   GcodeOptions gcode;             // dialect, feeds, spindle
+  MotionLimits motion;            // acceleration of the time estimate (--accel)
   bool rough = true;              // plan the roughing pass (false: finishing only, e.g. on foam)
   double stock_margin = 5.0;      // --stock-margin: mm of stock around the block in x and y and above it
   double resolution = 0.25;       // --resolution: mm, side of a simulation cell
@@ -48,7 +50,8 @@ struct MilledBlock {
   Stock stock;
   std::string gcode;
   PathLengths rough, finish;         // mm
-  double rough_time = 0.0, finish_time = 0.0;  // s, estimated from the feeds
+  double rough_time = 0.0, finish_time = 0.0;  // s, estimated from the feeds and the acceleration
+  double time_no_accel = 0.0;        // s, lengths over feeds only (a lower bound)
   SimulationStats simulation;
   MillCheck check;
   int num_gcode_lines = 0;
