@@ -10,7 +10,7 @@
 #include <cstdint>
 #include <limits>
 
-#include "unfold/write_png.h"
+#include "subfab/core/write_png.h"
 
 namespace subfab::unfold_detail {
 
@@ -138,7 +138,7 @@ void write_preview(const PolyMesh& mesh, const Mesh& tri, const std::vector<int>
   const std::array<std::uint8_t, 3> colors[] = {{0, 0, 0}, {210, 0, 0}, {0, 60, 210}};
   for (const Segment& s : drawing.segments) draw_line(img, to_sheet(s.a), to_sheet(s.b), colors[s.kind]);
   for (int y = 0; y < H; ++y) img.set(half, y, 200, 200, 200);
-  unfold_detail::write_png(img, path);
+  subfab::write_png(img, path);
 }
 
 }  // namespace subfab::unfold_detail

@@ -51,7 +51,13 @@ inline std::string slurp(const std::filesystem::path& path) {
 }
 
 //! A path in double quotes, for run_subfab() argument strings.
-inline std::string quoted(const std::filesystem::path& path) { return "\"" + path.string() + "\""; }
+//! (Appended, not "\"" + ...: GCC 12 warns -Wrestrict on that, a false positive.)
+inline std::string quoted(const std::filesystem::path& path) {
+  std::string out = "\"";
+  out += path.string();
+  out += '"';
+  return out;
+}
 
 #ifdef SUBFAB_BINARY
 //! Result of running the subfab command.

@@ -11,7 +11,7 @@
 #include "support/test_support.h"
 #include "geometry/hausdorff_distance.h"
 #include "unfold/triangulate_facets.h"
-#include "unfold/write_png.h"
+#include "subfab/core/write_png.h"
 #include "support/unfold_test_shapes.h"
 
 namespace subfab {
@@ -50,9 +50,9 @@ TEST(ExportUnfolding, HausdorffOfKnownOffsets) {
 }
 
 TEST(ExportUnfolding, PngIsWellFormed) {
-  unfold_detail::RgbImage img(3, 2);
+  RgbImage img(3, 2);
   img.set(1, 1, 255, 0, 0);
-  const auto bytes = unfold_detail::encode_png(img);
+  const auto bytes = encode_png(img);
   ASSERT_GT(bytes.size(), 8u + 25 + 12);
   EXPECT_EQ(bytes[1], 'P');
   EXPECT_EQ(bytes[2], 'N');

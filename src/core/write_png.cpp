@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-#include "unfold/write_png.h"
+#include "subfab/core/write_png.h"
 
 #include <array>
 #include <fstream>
 
 #include "subfab/core/error.h"
 
-namespace subfab::unfold_detail {
+namespace subfab {
 
 namespace {
 
@@ -87,4 +87,4 @@ void write_png(const RgbImage& image, const std::filesystem::path& path) {
   if (!file) throw IoError("cannot write " + path.string());
 }
 
-}  // namespace subfab::unfold_detail
+}  // namespace subfab

@@ -1,14 +1,15 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //! \file write_png.h
-//! Private: a minimal PNG writer (8-bit RGB, no compression: deflate
-//! "stored" blocks), enough for the unfolding preview without a library.
+//! A minimal PNG writer (8-bit RGB, no compression: deflate "stored"
+//! blocks), enough for previews (unfold's nets, mill's block maps) without
+//! an image library.
 #pragma once
 
 #include <cstdint>
 #include <filesystem>
 #include <vector>
 
-namespace subfab::unfold_detail {
+namespace subfab {
 
 //! An RGB image, rows top to bottom, 3 bytes per pixel.
 struct RgbImage {
@@ -30,4 +31,4 @@ std::vector<std::uint8_t> encode_png(const RgbImage& image);
 //! Writes `image` as a PNG file. \throw IoError when the file cannot be written.
 void write_png(const RgbImage& image, const std::filesystem::path& path);
 
-}  // namespace subfab::unfold_detail
+}  // namespace subfab
