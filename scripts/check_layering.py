@@ -26,6 +26,7 @@ ALLOWED = {
     "fidelity": {"core", "mesh", "geometry", "checks"},
     "decompose": {"core", "mesh", "checks", "geometry", "validate", "fidelity"},
     "unfold": {"core", "mesh", "checks", "geometry"},
+    "view": {"core", "mesh"},
 }
 
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"')

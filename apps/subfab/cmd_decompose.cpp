@@ -16,6 +16,8 @@
 #include "subfab/decompose/decompose.h"
 #include "subfab/decompose/export_decomposition.h"
 #include "subfab/mesh/write_mesh.h"
+#include "subfab/view/write_assembly_sheet.h"
+#include "subfab/view/write_decomposition_view.h"
 
 namespace subfab::cli {
 namespace {
@@ -31,6 +33,7 @@ struct DecomposeArgs {
   bool exact = false;
   double max_deviation = 0.005;
   double max_overhang = 0.0;
+  bool no_view = false;
   CommonOptions common;
 };
 
@@ -80,6 +83,18 @@ int run_decompose(const DecomposeArgs& args) {
       std::error_code ec;
       std::filesystem::remove(repaired_path, ec);
     }
+  }
+  if (!args.no_view) {
+    StageScope stage(&progress, "view");
+    write_view_or_warn(progress, "view.html", [&] {
+      write_decomposition_view(args.outdir, {.model = result.repaired_input ? &*result.repaired_input : &mesh, .html = {},
+                                             .progress = &progress});
+    });
+    write_view_or_warn(progress, "assembly.html", [&] {
+      AssemblySheetOptions sheet;
+      sheet.progress = &progress;
+      write_assembly_sheet(args.outdir, sheet);
+    });
   }
   if (result.repaired_input && !args.common.quiet) {
     const RepairReport& r = result.repair;
@@ -177,6 +192,8 @@ void add_decompose_options(CLI::App& sub, DecomposeArgs& args) {
                  "height x tan(DEG) deep), so use it only when that is acceptable, e.g. for the noise of a "
                  "scanned model; it gives far fewer blocks. The thesis's published blocks lean up to 43 deg.")
       ->check(CLI::Range(0.0, kMaxOverhangAllowanceDeg));
+  sub.add_flag("--no-view", args.no_view, "Do not write OUTDIR/view.html (the 3D view in the browser) and OUTDIR/assembly.html (cut list and "
+               "gluing order; `subfab assemble` writes it later, also in mm)");
   sub.add_option("--grid-factor", args.grid_factor,
                  "Grid spacing = average edge length x G (default 1; smaller is finer and slower)")
       ->check(CLI::PositiveNumber);
@@ -186,7 +203,9 @@ const RegisterCommand kRegisterDecompose(make_command<DecomposeArgs>(
     "decompose", 20,
     "Split a closed mesh into non-overlapping height-field blocks, each millable in one pass of a "
     "3-axis machine (thesis Chapter 4). Writes OUTDIR/decomposition.json, OUTDIR/blocks/block_NNN.obj "
-    "(input coordinates) and OUTDIR/mill/block_NNN.stl (milling direction +Z, base on z = 0). "
+    "(input coordinates), OUTDIR/mill/block_NNN.stl (milling direction +Z, base on z = 0) and "
+    "OUTDIR/view.html (the blocks in 3D in a browser) and OUTDIR/assembly.html (cut list, gluing order; "
+    "--no-view skips both). "
     "Creases and spikes that no axis-aligned block can cover in the chosen frame are smoothed locally "
     "first (deviation capped by --max-deviation and reported; OUTDIR/input_repaired.obj is then what the "
     "blocks decompose), or refused with --exact. Exit 2 if the mesh is not a closed, manifold, consistently "

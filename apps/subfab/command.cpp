@@ -9,6 +9,7 @@
 #include <exception>
 
 #include "subfab/checks/require_closed_solid.h"
+#include "subfab/core/error.h"
 #include "subfab/mesh/read_mesh.h"
 
 namespace subfab::cli {
@@ -46,6 +47,14 @@ bool parse_positive_number(const std::string& text, double& value) {
     return false;
   }
   return used == text.size() && value > 0 && std::isfinite(value);
+}
+
+void write_view_or_warn(Progress& progress, const std::string& name, const std::function<void()>& write) {
+  try {
+    write();
+  } catch (const IoError& e) {
+    progress.warn(name + " not written: " + e.what());
+  }
 }
 
 }  // namespace subfab::cli

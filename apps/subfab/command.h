@@ -93,6 +93,11 @@ CommandSpec make_command(const std::string& name, int order, const std::string& 
 //! \throw IoError / InvalidMeshError (exit 2), with the reason.
 Mesh read_closed_solid(const std::string& path, Progress& progress);
 
+//! Runs `write` (which writes the page `name`, e.g. view.html); an IoError
+//! (three.js missing, a file that cannot be written) becomes a warning: the
+//! page is a by-product, the command's main output is already written.
+void write_view_or_warn(Progress& progress, const std::string& name, const std::function<void()>& write);
+
 //! Parses the whole of `text` as a positive, finite number (std::stod's
 //! syntax) into `value`; false when it is not one.
 bool parse_positive_number(const std::string& text, double& value);

@@ -1,0 +1,40 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file render_picture.h
+//! Private: small pictures of blocks for assembly.html, drawn here (an
+//! orthographic z-buffered rasteriser, flat two-sided shading, a dark outline
+//! around each mesh) and embedded as PNG data URIs, so the sheet prints
+//! without a script.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "subfab/view/view_scene.h"
+
+namespace subfab::detail {
+
+//! One mesh of a picture, in one colour.
+struct PictureLayer {
+  const Mesh* mesh = nullptr;
+  Rgb color{200, 200, 200};
+};
+
+//! What the picture looks at.
+struct PictureView {
+  Vec3 towards_eye = Vec3(0.55, 0.45, 0.70);  // direction from the model to the eye (input frame; normalised here)
+  Vec3 up = Vec3::UnitY();                     // projected to the picture's vertical
+  BoundingBox frame;                           // what must fit in the picture (input frame)
+  int width = 220, height = 220;               // pixels
+};
+
+//! Renders the layers; returns "data:image/png;base64,...". With
+//! `highlight` >= 0, the eye direction is the one of view.towards_eye
+//! mirrored through the axis planes (8 candidates) that shows the most
+//! pixels of layer `highlight` (ties: the first, the unmirrored one).
+std::string render_picture(const std::vector<PictureLayer>& layers, const PictureView& view, int highlight = -1);
+
+//! PNG bytes (8-bit RGB, zlib-compressed) of a width x height image given as
+//! rows of RGB bytes, top row first.
+std::vector<std::uint8_t> encode_png_rgb(int width, int height, const std::vector<std::uint8_t>& rgb);
+
+}  // namespace subfab::detail
