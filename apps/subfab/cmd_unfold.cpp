@@ -14,6 +14,7 @@
 #include "subfab/unfold/export_unfolding.h"
 #include "subfab/unfold/simplify_unfoldable.h"
 #include "subfab/unfold/unfold_summary_to_json.h"
+#include "subfab/view/write_unfolding_view.h"
 
 namespace subfab::cli {
 namespace {
@@ -26,6 +27,7 @@ struct UnfoldArgs {
   std::string delete_facets;
   std::string sheet;
   bool no_masks = false;
+  bool no_view = false;
   CommonOptions common;
 };
 
@@ -78,6 +80,14 @@ int run_unfold(const UnfoldArgs& args) {
   const Mesh mesh = read_closed_solid(args.mesh, progress);  // IoError / InvalidMeshError: exit 2
   const SimplifyUnfoldableResult result = simplify_unfoldable(mesh, options);
   export_unfolding(result.mesh, result.unfolding, result.summary, args.outdir, export_options);
+  if (!args.no_view) {
+    StageScope stage(&progress, "view");
+    write_view_or_warn(progress, "view.html", [&] {
+      UnfoldingViewOptions view;
+      view.input = &mesh;
+      write_unfolding_view(args.outdir, view);
+    });
+  }
   if (!args.common.quiet) progress.print_timings(std::cerr);
 
   const UnfoldSummary& s = result.summary;
@@ -119,6 +129,7 @@ void add_unfold_options(CLI::App& sub, UnfoldArgs& args) {
   sub.add_option("--sheet", args.sheet,
                  "Sheet size WxH in model units; nets are packed on as many sheets as needed (default: one "
                  "large sheet)");
+  sub.add_flag("--no-view", args.no_view, "Do not write OUTDIR/view.html (the model and its nets in 3D in a browser)");
   sub.add_flag("--no-masks", args.no_masks,
                "Skip the mask stage (thesis 3.3.1, Appendix A): more facets, closer to the input");
 }
@@ -127,7 +138,7 @@ const RegisterCommand kRegisterUnfold(make_command<UnfoldArgs>(
     "unfold", 30,
     "Simplify a closed mesh into planar facets whose normals are among the 26 lattice directions, so every "
     "fold can be cut with a V-bit, and unfold it into nets (thesis Chapter 3). Writes OUTDIR/simplified.obj, "
-    "nets.svg, nets.dxf, unfold.json and preview.png. Exit 2 if the mesh is not a closed, manifold, "
+    "nets.svg, nets.dxf, unfold.json, preview.png and view.html (3D view in a browser; --no-view to skip). Exit 2 if the mesh is not a closed, manifold, "
     "consistently oriented solid.",
     add_unfold_options, run_unfold));
 

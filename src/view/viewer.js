@@ -7,8 +7,12 @@
 // right-drag or shift-drag to pan, wheel to zoom, click a part for its
 // details. The page's state is in window.subfabStatus for the tests:
 // frames drawn, errors seen (script errors, console.error, blocked loads).
-// view.html#check draws each object in the flat colour idColor(i), fully
-// exploded, on black, without the panel (what the browser test reads back).
+// The part of the address after '#' may hold, separated by '&':
+//   explode=N    the explode slider at N % (0..100)
+//   eye=X,Y,Z    the initial view direction (from the model to the eye)
+//   check        each object in the flat colour idColor(i), fully exploded
+//                unless explode= says otherwise, on black, without the
+//                panel (what the browser test reads back)
 (function () {
   'use strict';
   var status = (window.subfabStatus = { frames: 0, errors: [], objects: 0, ready: false });
@@ -31,7 +35,12 @@
     consoleError.apply(console, arguments);
   };
 
-  var check = window.location.hash === '#check';
+  var options = {};
+  window.location.hash.replace(/^#/, '').split('&').forEach(function (part) {
+    var kv = part.split('=');
+    if (kv[0]) options[kv[0]] = kv.length > 1 ? decodeURIComponent(kv[1]) : true;
+  });
+  var check = !!options.check;
   if (typeof THREE === 'undefined') {
     fail('three.js is missing from the page');
     return;
@@ -133,8 +142,10 @@
 
   // Explode slider.
   var slider = document.getElementById('explode');
+  if (options.explode !== undefined) slider.value = Number(options.explode);
+  else if (check) slider.value = 100;
   function explode() {
-    var t = check ? 1 : slider.value / 100;
+    var t = slider.value / 100;
     solids.concat(ghosts).forEach(function (m) { m.position.copy(m.userData.offset).multiplyScalar(t); });
     requestRender();
   }
@@ -148,7 +159,11 @@
   if (check) document.getElementById('panel').style.display = 'none';
 
   // Camera: orbit around a target (spherical angles), y up.
-  var target = new THREE.Vector3(), radius = 1, theta = 0.65, phi = 1.15;
+  var eyeOption = typeof options.eye === 'string' ? options.eye.split(',').map(Number) : null;
+  var eye = new THREE.Vector3().fromArray(eyeOption && eyeOption.length === 3 && eyeOption.every(isFinite) ? eyeOption
+                                                                                                          : data.eye).normalize();
+  var target = new THREE.Vector3(), radius = 1, theta = Math.atan2(eye.x, eye.z), phi = Math.acos(eye.y);
+  var theta0 = theta, phi0 = phi;
   function placeCamera() {
     camera.position.set(target.x + radius * Math.sin(phi) * Math.sin(theta), target.y + radius * Math.cos(phi),
                         target.z + radius * Math.sin(phi) * Math.cos(theta));
@@ -159,6 +174,8 @@
     requestRender();
   }
   function fit() {
+    theta = theta0;
+    phi = phi0;
     var box = new THREE.Box3();
     solids.forEach(function (m) { box.expandByObject(m); });
     if (box.isEmpty()) box.set(new THREE.Vector3(-1, -1, -1), new THREE.Vector3(1, 1, 1));

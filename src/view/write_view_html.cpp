@@ -74,6 +74,7 @@ Json object_json(const ViewObject& o) {
 std::string scene_json(const ViewScene& scene) {
   Json j;
   j["title"] = scene.title;
+  j["eye"] = Json::array({scene.towards_eye.x(), scene.towards_eye.y(), scene.towards_eye.z()});
   j["objects"] = Json::array();
   for (const ViewObject& o : scene.objects) j["objects"].push_back(object_json(o));
   std::string text = j.dump();

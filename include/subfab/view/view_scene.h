@@ -57,6 +57,7 @@ struct ViewScene {
   std::string subtitle;                 // one line under the heading
   std::vector<ViewLegendEntry> legend;  // colour key
   std::string ghost_label = "input model";  // label of the check box showing Ghost objects
+  Vec3 towards_eye = Vec3(0.553, 0.408, 0.727);  // initial view: direction from the scene to the eye (y is up)
   std::vector<ViewObject> objects;
 };
 
