@@ -145,7 +145,7 @@ AssemblySheet assembly_sheet(const DecompositionFolder& folder, const MillInfo* 
        "style-src 'unsafe-inline'; img-src data:\">\n<title>Assembly sheet: "
     << escape_html(folder.input_path) << "</title>\n<style>" << kStyle << "</style>\n<script>" << kStatusScript
     << "</script></head>\n<body>\n<h1>Assembly sheet: " << escape_html(folder.input_path) << "</h1>\n<p>" << n
-    << " blocks, from <code>" << escape_html(folder.folder.string()) << "</code>. Sizes in " << unit;
+    << " blocks. Sizes in " << unit;
   if (sheet.mm_per_unit > 0)
     h << " (" << format_number(sheet.mm_per_unit, 5) << " mm per model unit, from " << escape_html(scale_source) << ")";
   else

@@ -1,0 +1,78 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The browser pages as a user gets them: written by decompose and unfold
+// (or not, with --no-view), `subfab assemble`, and their errors.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+
+#include <nlohmann/json.hpp>
+
+#include "support/test_support.h"
+
+namespace subfab {
+namespace {
+
+namespace fs = std::filesystem;
+using test::quoted;
+using test::run_subfab;
+
+TEST(AssembleCli, DecomposeWritesThePagesAndAssembleRewritesTheSheet) {
+  const fs::path dir = test::temp_dir();
+  const std::string mesh = quoted(test::data_path("joint.off"));
+  ASSERT_EQ(run_subfab("decompose " + mesh + " -o " + quoted(dir / "a") + " --quiet").exit_code, 0);
+  if (!std::getenv("SUBFAB_THREE_JS") && !fs::exists("/usr/share/javascript/three/three.min.js"))
+    GTEST_SKIP() << "libjs-three not installed";
+  EXPECT_TRUE(fs::exists(dir / "a" / "view.html"));
+  EXPECT_TRUE(fs::exists(dir / "a" / "assembly.html"));
+  EXPECT_EQ(test::slurp(dir / "a" / "assembly.html").find(" mm "), std::string::npos);  // model units
+
+  auto r = run_subfab("assemble " + quoted(dir / "a") + " --size 100 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto j = nlohmann::json::parse(r.output.substr(r.output.find('{')));
+  EXPECT_EQ(j["steps"].size(), 2u);  // joint.off: two blocks
+  EXPECT_TRUE(j["stuck"].empty());
+  EXPECT_GT(j["mm_per_unit"].get<double>(), 0);
+  EXPECT_NE(test::slurp(dir / "a" / "assembly.html").find(" mm<"), std::string::npos);
+
+  ASSERT_EQ(run_subfab("decompose " + mesh + " -o " + quoted(dir / "b") + " --quiet --no-view").exit_code, 0);
+  EXPECT_FALSE(fs::exists(dir / "b" / "view.html"));
+  EXPECT_FALSE(fs::exists(dir / "b" / "assembly.html"));
+}
+
+TEST(AssembleCli, UnfoldWritesItsView) {
+  const fs::path dir = test::temp_dir();
+  ASSERT_EQ(run_subfab("unfold " + quoted(test::data_path("part.off")) + " -o " + quoted(dir / "u") + " --quiet")
+                .exit_code,
+            0);
+  if (!std::getenv("SUBFAB_THREE_JS") && !fs::exists("/usr/share/javascript/three/three.min.js"))
+    GTEST_SKIP() << "libjs-three not installed";
+  EXPECT_NE(test::slurp(dir / "u" / "view.html").find("subfab unfolding"), std::string::npos);
+}
+
+TEST(AssembleCli, MissingThreeJsIsAWarningNotAFailure) {
+  const fs::path dir = test::temp_dir();
+  setenv("SUBFAB_THREE_JS", "/nonexistent/three.min.js", 1);
+  auto r = run_subfab("decompose " + quoted(test::data_path("joint.off")) + " -o " + quoted(dir));
+  unsetenv("SUBFAB_THREE_JS");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("view.html not written"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("libjs-three"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "view.html"));
+  EXPECT_TRUE(fs::exists(dir / "assembly.html"));  // needs no three.js
+}
+
+TEST(AssembleCli, BadArguments) {
+  const fs::path dir = test::temp_dir();
+  EXPECT_EQ(run_subfab("assemble " + quoted(dir / "nothing")).exit_code, 2);
+  EXPECT_EQ(run_subfab("assemble " + quoted(dir) + " --size 10 --scale 2").exit_code, 1);
+  EXPECT_EQ(run_subfab("assemble " + quoted(dir) + " --size -3").exit_code, 1);
+  ASSERT_EQ(run_subfab("decompose " + quoted(test::data_path("joint.off")) + " -o " + quoted(dir) + " --quiet --no-view")
+                .exit_code,
+            0);
+  auto r = run_subfab("assemble " + quoted(dir) + " --mill " + quoted(dir / "gcode"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("mill.json"), std::string::npos) << r.output;
+}
+
+}  // namespace
+}  // namespace subfab
