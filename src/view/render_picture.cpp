@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "subfab/core/error.h"
+#include "subfab/core/parallel.h"
 #include "view/encode_base64.h"
 
 namespace subfab::detail {
@@ -115,65 +116,115 @@ std::vector<std::uint8_t> encode_png_rgb(int width, int height, const std::vecto
 
 namespace {
 
-//! The layers drawn from `view` (before the outline).
-Canvas draw(const std::vector<PictureLayer>& layers, const PictureView& view) {
-  const Vec3 eye = view.towards_eye.normalized();
-  Vec3 right = view.up.cross(eye);
-  if (right.norm() < 1e-9) right = Vec3::UnitX().cross(eye);
-  right.normalize();
-  const Vec3 up = eye.cross(right);
-  BoundingBox screen;  // the frame's corners in (right, up)
-  for (int c = 0; c < 8; ++c) {
-    const Vec3 corner((c & 1 ? view.frame.max : view.frame.min).x(), (c & 2 ? view.frame.max : view.frame.min).y(),
-                      (c & 4 ? view.frame.max : view.frame.min).z());
-    screen.extend(Vec3(corner.dot(right), corner.dot(up), 0));
+//! The orthographic projection of a view: screen x right, y down, z towards the eye.
+struct Projection {
+  Vec3 eye, right, up, mid;
+  double scale = 1;
+  int width = 1, height = 1;
+
+  explicit Projection(const PictureView& view) : width(view.width), height(view.height) {
+    eye = view.towards_eye.normalized();
+    right = view.up.cross(eye);
+    if (right.norm() < 1e-9) right = Vec3::UnitX().cross(eye);
+    right.normalize();
+    up = eye.cross(right);
+    BoundingBox screen;  // the frame's corners in (right, up)
+    for (int c = 0; c < 8; ++c) {
+      const Vec3 corner((c & 1 ? view.frame.max : view.frame.min).x(), (c & 2 ? view.frame.max : view.frame.min).y(),
+                        (c & 4 ? view.frame.max : view.frame.min).z());
+      screen.extend(Vec3(corner.dot(right), corner.dot(up), 0));
+    }
+    const double margin = 0.06;
+    scale = std::min(width * (1 - 2 * margin) / std::max(screen.size().x(), 1e-300),
+                     height * (1 - 2 * margin) / std::max(screen.size().y(), 1e-300));
+    mid = 0.5 * (screen.min + screen.max);
   }
-  const double margin = 0.06;
-  const double scale = std::min(view.width * (1 - 2 * margin) / std::max(screen.size().x(), 1e-300),
-                                view.height * (1 - 2 * margin) / std::max(screen.size().y(), 1e-300));
-  const Vec3 mid = 0.5 * (screen.min + screen.max);
-  Canvas canvas(view.width, view.height);
-  for (std::size_t l = 0; l < layers.size(); ++l) {
-    const Mesh& mesh = *layers[l].mesh;
+
+  //! Draws `mesh` into `canvas` as layer `id`, flat shaded in `color`.
+  void draw(Canvas& canvas, const Mesh& mesh, int id, const Rgb& color) const {
+    std::vector<Vec3> points;
+    points.reserve(mesh.num_vertices());
+    for (const Vec3& v : mesh.vertices)
+      points.emplace_back(0.5 * width + (v.dot(right) - mid.x()) * scale, 0.5 * height - (v.dot(up) - mid.y()) * scale,
+                          v.dot(eye));
     for (std::size_t f = 0; f < mesh.num_faces(); ++f) {
-      Vec3 p[3];
-      for (int k = 0; k < 3; ++k) {
-        const Vec3& v = mesh.vertices[mesh.faces[f][k]];
-        p[k] = Vec3(0.5 * view.width + (v.dot(right) - mid.x()) * scale, 0.5 * view.height - (v.dot(up) - mid.y()) * scale,
-                    v.dot(eye));
-      }
-      const double light = 0.45 + 0.55 * std::abs(face_unit_normal(mesh, f).dot(eye));
+      const Vec3 p[3] = {points[mesh.faces[f][0]], points[mesh.faces[f][1]], points[mesh.faces[f][2]]};
+      const Vec3 n = (p[1] - p[0]).cross(p[2] - p[0]);  // screen space: its z over its length is the light
+      const double light = 0.45 + 0.55 * std::abs(n.z()) / std::max(n.norm(), 1e-300);
       Rgb c;
-      for (int k = 0; k < 3; ++k) c[k] = std::clamp(int(layers[l].color[k] * light + 0.5), 0, 255);
-      canvas.fill(p, int(l), c);
+      for (int k = 0; k < 3; ++k) c[k] = std::clamp(int(color[k] * light + 0.5), 0, 255);
+      canvas.fill(p, id, c);
     }
   }
-  return canvas;
+};
+
+std::string png_data_uri(Canvas canvas) {
+  canvas.outline();
+  const std::vector<std::uint8_t> png = encode_png_rgb(canvas.width, canvas.height, canvas.rgb);
+  return "data:image/png;base64," + encode_base64(png.data(), png.size());
+}
+
+//! The eye direction mirrored through the axis planes whose bits are set in m.
+Vec3 mirrored(const Vec3& eye, int m) {
+  Vec3 out = eye;
+  for (int k = 0; k < 3; ++k)
+    if (m & (1 << k)) out[k] = -out[k];
+  return out;
 }
 
 }  // namespace
 
-std::string render_picture(const std::vector<PictureLayer>& layers, const PictureView& view, int highlight) {
-  Canvas best = draw(layers, view);
-  if (highlight >= 0) {
-    // The view (towards_eye mirrored through the axis planes) showing most of the highlighted layer.
-    const auto visible = [highlight](const Canvas& c) { return std::count(c.layer.begin(), c.layer.end(), highlight); };
-    auto best_count = visible(best);
-    for (int m = 1; m < 8; ++m) {
-      PictureView mirrored = view;
-      for (int k = 0; k < 3; ++k)
-        if (m & (1 << k)) mirrored.towards_eye[k] = -mirrored.towards_eye[k];
-      Canvas c = draw(layers, mirrored);
-      const auto count = visible(c);
-      if (count > best_count) {
-        best_count = count;
-        best = std::move(c);
-      }
+std::string render_picture(const std::vector<PictureLayer>& layers, const PictureView& view) {
+  const Projection projection(view);
+  Canvas canvas(view.width, view.height);
+  for (std::size_t l = 0; l < layers.size(); ++l) projection.draw(canvas, *layers[l].mesh, int(l), layers[l].color);
+  return png_data_uri(std::move(canvas));
+}
+
+struct AssemblyPictures::Views {
+  std::vector<Projection> full, draft;  // per mirror 0..7
+  std::vector<Canvas> full_canvas, draft_canvas;
+};
+
+AssemblyPictures::AssemblyPictures(const PictureView& view, const Rgb& placed_color)
+    : views_(std::make_unique<Views>()), placed_color_(placed_color) {
+  PictureView draft = view;
+  draft.width = std::max(16, view.width / 4);
+  draft.height = std::max(16, view.height / 4);
+  for (int m = 0; m < 8; ++m) {
+    PictureView full = view;
+    full.towards_eye = draft.towards_eye = mirrored(view.towards_eye, m);
+    views_->full.emplace_back(full);
+    views_->draft.emplace_back(draft);
+    views_->full_canvas.emplace_back(full.width, full.height);
+    views_->draft_canvas.emplace_back(draft.width, draft.height);
+  }
+}
+
+AssemblyPictures::~AssemblyPictures() = default;
+
+std::string AssemblyPictures::add(const Mesh& mesh, const Rgb& color) {
+  const int id = num_added_++;
+  // The view showing most of the new mesh, compared on drafts (1/4 of the size).
+  int best = 0;
+  std::ptrdiff_t best_count = -1;
+  for (int m = 0; m < 8; ++m) {
+    Canvas c = views_->draft_canvas[m];
+    views_->draft[m].draw(c, mesh, id, color);
+    const std::ptrdiff_t count = std::count(c.layer.begin(), c.layer.end(), id);
+    if (count > best_count) {
+      best_count = count;
+      best = m;
     }
   }
-  best.outline();
-  const std::vector<std::uint8_t> png = encode_png_rgb(view.width, view.height, best.rgb);
-  return "data:image/png;base64," + encode_base64(png.data(), png.size());
+  Canvas picture = views_->full_canvas[best];
+  views_->full[best].draw(picture, mesh, id, color);
+  // Then the mesh joins the placed ones, in grey.
+  parallel_for(0, 8, [&](std::size_t m) {
+    views_->draft[m].draw(views_->draft_canvas[m], mesh, id, placed_color_);
+    views_->full[m].draw(views_->full_canvas[m], mesh, id, placed_color_);
+  });
+  return png_data_uri(std::move(picture));
 }
 
 }  // namespace subfab::detail

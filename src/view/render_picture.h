@@ -6,6 +6,7 @@
 //! without a script.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -27,11 +28,29 @@ struct PictureView {
   int width = 220, height = 220;               // pixels
 };
 
-//! Renders the layers; returns "data:image/png;base64,...". With
-//! `highlight` >= 0, the eye direction is the one of view.towards_eye
-//! mirrored through the axis planes (8 candidates) that shows the most
-//! pixels of layer `highlight` (ties: the first, the unmirrored one).
-std::string render_picture(const std::vector<PictureLayer>& layers, const PictureView& view, int highlight = -1);
+//! Renders the layers; returns "data:image/png;base64,...".
+std::string render_picture(const std::vector<PictureLayer>& layers, const PictureView& view);
+
+//! Pictures of an assembly growing one mesh at a time: add() returns the
+//! meshes added before in `placed_color` with the new one in its colour,
+//! seen from the direction (view.towards_eye mirrored through the axis
+//! planes, 8 candidates) that shows most of the new one (ties: the first,
+//! unmirrored one). The placed meshes are kept drawn, once per candidate, so
+//! n meshes cost O(n) drawing, not O(n^2).
+class AssemblyPictures {
+ public:
+  AssemblyPictures(const PictureView& view, const Rgb& placed_color);
+  ~AssemblyPictures();
+  AssemblyPictures(const AssemblyPictures&) = delete;
+  AssemblyPictures& operator=(const AssemblyPictures&) = delete;
+  std::string add(const Mesh& mesh, const Rgb& color);
+
+ private:
+  struct Views;
+  std::unique_ptr<Views> views_;
+  Rgb placed_color_;
+  int num_added_ = 0;
+};
 
 //! PNG bytes (8-bit RGB, zlib-compressed) of a width x height image given as
 //! rows of RGB bytes, top row first.

@@ -125,18 +125,18 @@ AssemblySheet assembly_sheet(const DecompositionFolder& folder, const MillInfo* 
 
   // Pictures: the block alone, and with the blocks glued before it.
   std::vector<std::string> alone(n), placed(n);
-  parallel_for(0, n, [&](std::size_t s) {
-    const std::size_t i = sheet.plan.steps[s].block;
+  parallel_for(0, n, [&](std::size_t i) {
     detail::PictureView view;
     view.width = view.height = options.picture_size;
     view.frame = folder.blocks[i].bbox;
     alone[i] = detail::render_picture({{&folder.blocks[i].mesh, color[i]}}, view);
-    std::vector<detail::PictureLayer> layers;
-    for (std::size_t t = 0; t < s; ++t) layers.push_back({&folder.blocks[sheet.plan.steps[t].block].mesh, {205, 205, 205}});
-    layers.push_back({&folder.blocks[i].mesh, color[i]});
-    view.frame = all;
-    placed[i] = detail::render_picture(layers, view, int(layers.size()) - 1);
   });
+  detail::PictureView whole;
+  whole.width = whole.height = options.picture_size;
+  whole.frame = all;
+  detail::AssemblyPictures assembly(whole, {205, 205, 205});
+  for (const GluingStep& step : sheet.plan.steps)
+    placed[step.block] = assembly.add(folder.blocks[step.block].mesh, color[step.block]);
 
   const bool rotated = !folder.rotation.isIdentity(1e-12);
   std::ostringstream h;

@@ -79,21 +79,25 @@ TEST(WriteAssemblySheet, ReadsMillJson) {
   EXPECT_THROW(read_mill_info(dir / "gcode"), IoError);
 }
 
-TEST(RenderPicture, PngOfTheLayersWithTheHighlightVisible) {
+TEST(RenderPicture, PngOfTheLayersWithTheNewPartVisible) {
   // A box hidden under a lid from the default view (which looks down): the
-  // mirrored view from below shows it.
+  // assembly picture of the box looks from below.
   const Mesh lid = test::make_box_mesh({-1, 1, -1}, {2, 1.2, 2});
   const Mesh box = test::make_box_mesh({0, 0, 0}, {1, 1, 1});
   detail::PictureView view;
   view.frame = bounding_box(lid);
   view.frame.extend(Vec3(0, 0, 0));
   view.width = view.height = 64;
-  const std::string a = detail::render_picture({{&lid, {200, 200, 200}}, {&box, {215, 48, 48}}}, view);
-  const std::string b = detail::render_picture({{&lid, {200, 200, 200}}, {&box, {215, 48, 48}}}, view, 1);
-  EXPECT_EQ(a.rfind("data:image/png;base64,iVBORw0KGgo", 0), 0u);  // the PNG signature
-  EXPECT_NE(a, b);
+  const std::string plain = detail::render_picture({{&lid, {200, 200, 200}}, {&box, {215, 48, 48}}}, view);
+  EXPECT_EQ(plain.rfind("data:image/png;base64,iVBORw0KGgo", 0), 0u);  // the PNG signature
+  detail::AssemblyPictures pictures(view, {200, 200, 200});
+  const std::string first = pictures.add(lid, {215, 48, 48});
+  EXPECT_EQ(first, detail::render_picture({{&lid, {215, 48, 48}}}, view));  // the unmirrored view shows the lid best
+  const std::string second = pictures.add(box, {215, 48, 48});
+  EXPECT_NE(second, plain);  // not the view from above, where the lid hides the box
+  view.towards_eye.y() = -view.towards_eye.y();
+  EXPECT_EQ(second, detail::render_picture({{&lid, {200, 200, 200}}, {&box, {215, 48, 48}}}, view));
   const auto png = detail::encode_png_rgb(2, 1, {255, 0, 0, 0, 0, 255});
-  EXPECT_EQ(png.size() > 8 + 25 + 12 + 12, true);
   EXPECT_EQ(std::string(png.begin() + 12, png.begin() + 16), "IHDR");
 }
 
