@@ -182,15 +182,23 @@
     var sphere = box.getBoundingSphere(new THREE.Sphere());
     target.copy(sphere.center);
     var half = (camera.fov * Math.PI / 360);
-    var fitHalf = camera.aspect < 1 ? Math.atan(Math.tan(half) * camera.aspect) : half;
+    var aspect = (window.innerWidth - panelWidth()) / Math.max(1, window.innerHeight);
+    var fitHalf = aspect < 1 ? Math.atan(Math.tan(half) * aspect) : half;
     radius = Math.max(sphere.radius, 1e-9) / Math.sin(fitHalf) * 1.02;
     placeCamera();
   }
+  // On a wide window the scene is centred right of the panel.
+  function panelWidth() {
+    return check || window.innerWidth < 700 ? 0 : document.getElementById('panel').offsetWidth + 24;
+  }
   function resize() {
-    renderer.setSize(window.innerWidth, window.innerHeight, false);
-    canvas.style.width = window.innerWidth + 'px';
-    canvas.style.height = window.innerHeight + 'px';
-    camera.aspect = window.innerWidth / Math.max(1, window.innerHeight);
+    var w = window.innerWidth, h = window.innerHeight;
+    renderer.setSize(w, h, false);
+    canvas.style.width = w + 'px';
+    canvas.style.height = h + 'px';
+    camera.aspect = w / Math.max(1, h);
+    if (panelWidth() > 0) camera.setViewOffset(w, h, -panelWidth() / 2, 0, w, h);
+    else camera.clearViewOffset();
     camera.updateProjectionMatrix();
     requestRender();
   }

@@ -60,13 +60,23 @@ def run(cmd):
         raise SystemExit("command failed with exit %d" % r.returncode)
 
 
-def pixel_near_centre(rows, color):
-    """A pixel of `color`: the one nearest the centroid of all of them."""
+def pixel_near_centre(rows, color, hue=None):
+    """A pixel of `color` (or, with `hue`, of that hue, saturated, away from
+    edges): the one nearest the centroid of all of them."""
+    def match(r, g, b):
+        if hue is None:
+            return (r, g, b) == color
+        h, sat = bc.hue_of((r, g, b))
+        return sat >= 0.3 and min(abs(h - hue), 360 - abs(h - hue)) <= 6
     points = []
     for y, row in enumerate(rows):
         for x in range(0, len(row), 3):
-            if (row[x], row[x + 1], row[x + 2]) == color:
+            if match(row[x], row[x + 1], row[x + 2]):
                 points.append((x // 3, y))
+    if hue is not None:  # keep pixels whose four neighbours match too (not on an edge)
+        inside = set(points)
+        points = [(x, y) for (x, y) in points
+                  if all(p in inside for p in ((x + 1, y), (x - 1, y), (x, y + 1), (x, y - 1)))]
     if not points:
         return None
     cx = sum(p[0] for p in points) / len(points)
@@ -89,6 +99,20 @@ def check_decomposition(page, folder, work, f):
     for axis in sorted(set(axes)):
         n = bc.pixels_of_hue(counts, DIRECTION_HUES[axis])
         f.check(n >= 30, "view.html: %d pixels of the %s colour (hue %d)" % (n, axis, DIRECTION_HUES[axis]))
+    # In the default view (lit, the scene right of the panel), a click on a
+    # pixel of a direction's hue shows a block of that direction.
+    page.open(view)
+    panel_right = int(page.evaluate("Math.ceil(document.getElementById('panel').getBoundingClientRect().right)"))
+    rows = [row[3 * (panel_right + 1):] for row in bc.read_png(os.path.join(work, "view_default.png"))[2]]
+    for axis in sorted(set(axes)):
+        at = pixel_near_centre(rows, None, hue=DIRECTION_HUES[axis])
+        at = at and (at[0] + panel_right + 1, at[1])  # the legend's swatches are left out
+        if not at:
+            continue
+        page.click(*at)
+        info = page.evaluate("document.getElementById('info').textContent")
+        f.check("Milling direction" + axis in info, "default view: click at %s on the %s colour shows a %s block: %r"
+                % (at, axis, axis, info[:60]))
     # Every block in its own flat colour, then a click on each.
     shots = {}
     for name, hash_part in (("up", "check&" + UP), ("down", "check&" + DOWN)):
