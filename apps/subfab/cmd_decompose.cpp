@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //! `subfab decompose MESH -o OUTDIR [options]`: height-field block
 //! decomposition (thesis Chapter 4), written as OUTDIR/decomposition.json,
-//! OUTDIR/blocks/block_NNN.obj (input frame) and OUTDIR/mill/block_NNN.stl
-//! (ready to mill: direction +Z, base on z = 0).
+//! OUTDIR/blocks/block_NNN.obj (input frame), OUTDIR/mill/block_NNN.stl
+//! (ready to mill: direction +Z, base on z = 0), and unless --no-view
+//! OUTDIR/view.html and OUTDIR/assembly.html (src/view).
 #include <filesystem>
 #include <iostream>
 #include <limits>

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //! `subfab unfold MESH -o OUTDIR [options]`: unfoldable simplification for
 //! V-groove milling (thesis Chapter 3): a polygonal model whose every fold a
-//! V-bit can cut, its nets on sheets (SVG, DXF), a JSON description and a
-//! preview picture.
+//! V-bit can cut, its nets on sheets (SVG, DXF), a JSON description, a
+//! preview picture and (unless --no-view) view.html.
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>

@@ -7,6 +7,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "subfab/view/plan_gluing_order.h"
+#include "subfab/view/read_decomposition.h"
 #include "support/test_support.h"
 
 namespace subfab {
@@ -59,6 +61,40 @@ TEST(AssembleCli, MissingThreeJsIsAWarningNotAFailure) {
   EXPECT_NE(r.output.find("libjs-three"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir / "view.html"));
   EXPECT_TRUE(fs::exists(dir / "assembly.html"));  // needs no three.js
+}
+
+TEST(AssembleCli, MoaisGluingOrderHoldsAtTwiceTheRayDensity) {
+  // moai at the thesis's height: every block gets a step, and each step's
+  // block is free along its axis from the blocks glued before it, checked
+  // again with rays twice as dense in each direction (4x as many).
+  const fs::path dir = test::temp_dir();
+  ASSERT_EQ(run_subfab("decompose " + quoted(test::data_path("moai.obj")) + " -o " + quoted(dir) +
+                       " --max-height 0.225 --quiet --no-view")
+                .exit_code,
+            0);
+  const DecompositionFolder folder = read_decomposition(dir);
+  std::vector<Mesh> meshes;
+  GluingOptions options;
+  options.rotation = folder.rotation;
+  for (const DecompositionBlock& b : folder.blocks) {
+    meshes.push_back(b.mesh);
+    options.preferred_axis.push_back(axis_index(b.axis));
+    options.volumes.push_back(b.volume);
+  }
+  const GluingPlan plan = plan_gluing_order(meshes, options);
+  ASSERT_EQ(plan.steps.size(), folder.blocks.size());
+  EXPECT_TRUE(plan.stuck.empty());
+  options.resolution = 400;
+  const BlockingRelation fine = compute_blocking(meshes, options);
+  std::size_t num_blocking_pairs = 0;
+  for (int d = 0; d < 6; ++d)
+    for (bool b : fine.blocked[d]) num_blocking_pairs += b;
+  EXPECT_GT(num_blocking_pairs, folder.blocks.size());  // the blocks do touch
+  for (std::size_t s = 1; s < plan.steps.size(); ++s)
+    for (std::size_t t = 0; t < s; ++t)
+      EXPECT_FALSE(fine(plan.steps[s].axis, plan.steps[s].block, plan.steps[t].block))
+          << "step " << s << " (block " << plan.steps[s].block << " from " << axis_label(plan.steps[s].axis)
+          << ") passes through block " << plan.steps[t].block;
 }
 
 TEST(AssembleCli, BadArguments) {
