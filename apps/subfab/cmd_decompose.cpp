@@ -85,13 +85,18 @@ int run_decompose(const DecomposeArgs& args) {
       std::filesystem::remove(repaired_path, ec);
     }
   }
-  if (!args.no_view) {
+  const std::filesystem::path view_page = std::filesystem::path(args.outdir) / "view.html";
+  const std::filesystem::path sheet_page = std::filesystem::path(args.outdir) / "assembly.html";
+  if (args.no_view) {
+    remove_stale_page(view_page);
+    remove_stale_page(sheet_page);
+  } else {
     StageScope stage(&progress, "view");
-    write_view_or_warn(progress, "view.html", [&] {
+    write_view_or_warn(progress, view_page, [&] {
       write_decomposition_view(args.outdir, {.model = result.repaired_input ? &*result.repaired_input : &mesh, .html = {},
                                              .progress = &progress});
     });
-    write_view_or_warn(progress, "assembly.html", [&] {
+    write_view_or_warn(progress, sheet_page, [&] {
       AssemblySheetOptions sheet;
       sheet.progress = &progress;
       write_assembly_sheet(args.outdir, sheet);

@@ -3,6 +3,7 @@
 //! V-groove milling (thesis Chapter 3): a polygonal model whose every fold a
 //! V-bit can cut, its nets on sheets (SVG, DXF), a JSON description, a
 //! preview picture and (unless --no-view) view.html.
+#include <filesystem>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -80,9 +81,12 @@ int run_unfold(const UnfoldArgs& args) {
   const Mesh mesh = read_closed_solid(args.mesh, progress);  // IoError / InvalidMeshError: exit 2
   const SimplifyUnfoldableResult result = simplify_unfoldable(mesh, options);
   export_unfolding(result.mesh, result.unfolding, result.summary, args.outdir, export_options);
-  if (!args.no_view) {
+  const std::filesystem::path view_page = std::filesystem::path(args.outdir) / "view.html";
+  if (args.no_view) {
+    remove_stale_page(view_page);
+  } else {
     StageScope stage(&progress, "view");
-    write_view_or_warn(progress, "view.html", [&] {
+    write_view_or_warn(progress, view_page, [&] {
       UnfoldingViewOptions view;
       view.input = &mesh;
       write_unfolding_view(args.outdir, view);

@@ -49,11 +49,17 @@ bool parse_positive_number(const std::string& text, double& value) {
   return used == text.size() && value > 0 && std::isfinite(value);
 }
 
-void write_view_or_warn(Progress& progress, const std::string& name, const std::function<void()>& write) {
+void remove_stale_page(const std::filesystem::path& page) {
+  std::error_code ec;
+  std::filesystem::remove(page, ec);
+}
+
+void write_view_or_warn(Progress& progress, const std::filesystem::path& page, const std::function<void()>& write) {
   try {
     write();
   } catch (const IoError& e) {
-    progress.warn(name + " not written: " + e.what());
+    remove_stale_page(page);
+    progress.warn(page.filename().string() + " not written: " + e.what());
   }
 }
 

@@ -39,6 +39,10 @@ TEST(AssembleCli, DecomposeWritesThePagesAndAssembleRewritesTheSheet) {
   ASSERT_EQ(run_subfab("decompose " + mesh + " -o " + quoted(dir / "b") + " --quiet --no-view").exit_code, 0);
   EXPECT_FALSE(fs::exists(dir / "b" / "view.html"));
   EXPECT_FALSE(fs::exists(dir / "b" / "assembly.html"));
+  // Into a folder with pages of an earlier run: they go (they would show another result).
+  ASSERT_EQ(run_subfab("decompose " + mesh + " -o " + quoted(dir / "a") + " --quiet --no-view").exit_code, 0);
+  EXPECT_FALSE(fs::exists(dir / "a" / "view.html"));
+  EXPECT_FALSE(fs::exists(dir / "a" / "assembly.html"));
 }
 
 TEST(AssembleCli, UnfoldWritesItsView) {
