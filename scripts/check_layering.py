@@ -27,6 +27,7 @@ ALLOWED = {
     "decompose": {"core", "mesh", "checks", "geometry", "validate", "fidelity"},
     "unfold": {"core", "mesh", "checks", "geometry"},
     "mill": {"core", "mesh"},
+    "view": {"core", "mesh"},
 }
 
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"')

@@ -15,6 +15,10 @@ packages=(
   libcli11-dev
   nlohmann-json3-dev
   libgtest-dev libgmock-dev
+  zlib1g-dev
+  # view.html inlines three.js; the browser tests of view.html and
+  # assembly.html run headless Debian chromium (skipped when it is missing).
+  libjs-three chromium chromium-driver
 )
 
 missing=()

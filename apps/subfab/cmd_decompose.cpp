@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //! `subfab decompose MESH -o OUTDIR [options]`: height-field block
 //! decomposition (thesis Chapter 4), written as OUTDIR/decomposition.json,
-//! OUTDIR/blocks/block_NNN.obj (input frame) and OUTDIR/mill/block_NNN.stl
-//! (ready to mill: direction +Z, base on z = 0).
+//! OUTDIR/blocks/block_NNN.obj (input frame), OUTDIR/mill/block_NNN.stl
+//! (ready to mill: direction +Z, base on z = 0), and unless --no-view
+//! OUTDIR/view.html and OUTDIR/assembly.html (src/view).
 #include <filesystem>
 #include <iostream>
 #include <limits>
@@ -16,6 +17,8 @@
 #include "subfab/decompose/decompose.h"
 #include "subfab/decompose/export_decomposition.h"
 #include "subfab/mesh/write_mesh.h"
+#include "subfab/view/write_assembly_sheet.h"
+#include "subfab/view/write_decomposition_view.h"
 
 namespace subfab::cli {
 namespace {
@@ -33,6 +36,7 @@ struct DecomposeArgs {
   double max_overhang = 0.0;
   double tolerance = 0.0;
   double tolerance_abs = std::numeric_limits<double>::infinity();
+  bool no_view = false;
   CommonOptions common;
 };
 
@@ -84,6 +88,23 @@ int run_decompose(const DecomposeArgs& args) {
       std::error_code ec;
       std::filesystem::remove(repaired_path, ec);
     }
+  }
+  const std::filesystem::path view_page = std::filesystem::path(args.outdir) / "view.html";
+  const std::filesystem::path sheet_page = std::filesystem::path(args.outdir) / "assembly.html";
+  if (args.no_view) {
+    remove_stale_page(view_page);
+    remove_stale_page(sheet_page);
+  } else {
+    StageScope stage(&progress, "view");
+    write_view_or_warn(progress, view_page, [&] {
+      write_decomposition_view(args.outdir, {.model = result.repaired_input ? &*result.repaired_input : &mesh, .html = {},
+                                             .progress = &progress});
+    });
+    write_view_or_warn(progress, sheet_page, [&] {
+      AssemblySheetOptions sheet;
+      sheet.progress = &progress;
+      write_assembly_sheet(args.outdir, sheet);
+    });
   }
   if (result.repaired_input && !args.common.quiet) {
     const RepairReport& r = result.repair;
@@ -190,6 +211,8 @@ void add_decompose_options(CLI::App& sub, DecomposeArgs& args) {
   sub.add_option("--tolerance-abs", args.tolerance_abs,
                  "Deviation allowed in model units (with --tolerance the smaller wins)")
       ->check(CLI::NonNegativeNumber);
+  sub.add_flag("--no-view", args.no_view, "Do not write OUTDIR/view.html (the 3D view in the browser) and OUTDIR/assembly.html (cut list and "
+               "gluing order; `subfab assemble` writes it later, also in mm)");
   sub.add_option("--grid-factor", args.grid_factor,
                  "Grid spacing = average edge length x G (default 1; smaller is finer and slower)")
       ->check(CLI::PositiveNumber);
@@ -199,7 +222,9 @@ const RegisterCommand kRegisterDecompose(make_command<DecomposeArgs>(
     "decompose", 20,
     "Split a closed mesh into non-overlapping height-field blocks, each millable in one pass of a "
     "3-axis machine (thesis Chapter 4). Writes OUTDIR/decomposition.json, OUTDIR/blocks/block_NNN.obj "
-    "(input coordinates) and OUTDIR/mill/block_NNN.stl (milling direction +Z, base on z = 0). "
+    "(input coordinates), OUTDIR/mill/block_NNN.stl (milling direction +Z, base on z = 0) and "
+    "OUTDIR/view.html (the blocks in 3D in a browser) and OUTDIR/assembly.html (cut list, gluing order; "
+    "--no-view skips both). "
     "Creases and spikes that no axis-aligned block can cover in the chosen frame are smoothed locally "
     "first (deviation capped by --max-deviation and reported; OUTDIR/input_repaired.obj is then what the "
     "blocks decompose), or refused with --exact. Exit 2 if the mesh is not a closed, manifold, consistently "

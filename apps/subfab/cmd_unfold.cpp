@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //! `subfab unfold MESH -o OUTDIR [options]`: unfoldable simplification for
 //! V-groove milling (thesis Chapter 3): a polygonal model whose every fold a
-//! V-bit can cut, its nets on sheets (SVG, DXF), a JSON description and a
-//! preview picture.
+//! V-bit can cut, its nets on sheets (SVG, DXF), a JSON description, a
+//! preview picture and (unless --no-view) view.html.
+#include <filesystem>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -14,6 +15,7 @@
 #include "subfab/unfold/export_unfolding.h"
 #include "subfab/unfold/simplify_unfoldable.h"
 #include "subfab/unfold/unfold_summary_to_json.h"
+#include "subfab/view/write_unfolding_view.h"
 
 namespace subfab::cli {
 namespace {
@@ -26,6 +28,7 @@ struct UnfoldArgs {
   std::string delete_facets;
   std::string sheet;
   bool no_masks = false;
+  bool no_view = false;
   CommonOptions common;
 };
 
@@ -78,6 +81,17 @@ int run_unfold(const UnfoldArgs& args) {
   const Mesh mesh = read_closed_solid(args.mesh, progress);  // IoError / InvalidMeshError: exit 2
   const SimplifyUnfoldableResult result = simplify_unfoldable(mesh, options);
   export_unfolding(result.mesh, result.unfolding, result.summary, args.outdir, export_options);
+  const std::filesystem::path view_page = std::filesystem::path(args.outdir) / "view.html";
+  if (args.no_view) {
+    remove_stale_page(view_page);
+  } else {
+    StageScope stage(&progress, "view");
+    write_view_or_warn(progress, view_page, [&] {
+      UnfoldingViewOptions view;
+      view.input = &mesh;
+      write_unfolding_view(args.outdir, view);
+    });
+  }
   if (!args.common.quiet) progress.print_timings(std::cerr);
 
   const UnfoldSummary& s = result.summary;
@@ -119,6 +133,7 @@ void add_unfold_options(CLI::App& sub, UnfoldArgs& args) {
   sub.add_option("--sheet", args.sheet,
                  "Sheet size WxH in model units; nets are packed on as many sheets as needed (default: one "
                  "large sheet)");
+  sub.add_flag("--no-view", args.no_view, "Do not write OUTDIR/view.html (the model and its nets in 3D in a browser)");
   sub.add_flag("--no-masks", args.no_masks,
                "Skip the mask stage (thesis 3.3.1, Appendix A): more facets, closer to the input");
 }
@@ -127,7 +142,7 @@ const RegisterCommand kRegisterUnfold(make_command<UnfoldArgs>(
     "unfold", 30,
     "Simplify a closed mesh into planar facets whose normals are among the 26 lattice directions, so every "
     "fold can be cut with a V-bit, and unfold it into nets (thesis Chapter 3). Writes OUTDIR/simplified.obj, "
-    "nets.svg, nets.dxf, unfold.json and preview.png. Exit 2 if the mesh is not a closed, manifold, "
+    "nets.svg, nets.dxf, unfold.json, preview.png and view.html (3D view in a browser; --no-view to skip). Exit 2 if the mesh is not a closed, manifold, "
     "consistently oriented solid.",
     add_unfold_options, run_unfold));
 

@@ -9,6 +9,7 @@
 #include <exception>
 
 #include "subfab/checks/require_closed_solid.h"
+#include "subfab/core/error.h"
 #include "subfab/mesh/read_mesh.h"
 
 namespace subfab::cli {
@@ -46,6 +47,20 @@ bool parse_positive_number(const std::string& text, double& value) {
     return false;
   }
   return used == text.size() && value > 0 && std::isfinite(value);
+}
+
+void remove_stale_page(const std::filesystem::path& page) {
+  std::error_code ec;
+  std::filesystem::remove(page, ec);
+}
+
+void write_view_or_warn(Progress& progress, const std::filesystem::path& page, const std::function<void()>& write) {
+  try {
+    write();
+  } catch (const IoError& e) {
+    remove_stale_page(page);
+    progress.warn(page.filename().string() + " not written: " + e.what());
+  }
 }
 
 }  // namespace subfab::cli

@@ -12,6 +12,7 @@
 #include <CLI/CLI.hpp>
 
 #include <cstddef>
+#include <filesystem>
 #include <functional>
 #include <memory>
 #include <string>
@@ -92,6 +93,16 @@ CommandSpec make_command(const std::string& name, int order, const std::string& 
 //! require_closed_solid() (an inward mesh is flipped, with a warning).
 //! \throw IoError / InvalidMeshError (exit 2), with the reason.
 Mesh read_closed_solid(const std::string& path, Progress& progress);
+
+//! Runs `write` (which writes the page `page`, e.g. OUTDIR/view.html); an
+//! IoError (three.js missing, a file that cannot be written) becomes a
+//! warning: the page is a by-product, the command's main output is already
+//! written. A page left from an earlier run is removed then, so a folder
+//! never holds a page of another result.
+void write_view_or_warn(Progress& progress, const std::filesystem::path& page, const std::function<void()>& write);
+
+//! Removes `page` if it exists (a page of an earlier run, with --no-view).
+void remove_stale_page(const std::filesystem::path& page);
 
 //! Parses the whole of `text` as a positive, finite number (std::stod's
 //! syntax) into `value`; false when it is not one.
