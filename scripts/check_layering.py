@@ -26,6 +26,7 @@ ALLOWED = {
     "fidelity": {"core", "mesh", "geometry", "checks"},
     "decompose": {"core", "mesh", "checks", "geometry", "validate", "fidelity"},
     "unfold": {"core", "mesh", "checks", "geometry"},
+    "hex": {"core", "mesh", "checks", "geometry"},
 }
 
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"')
