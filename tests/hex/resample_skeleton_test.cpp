@@ -30,14 +30,14 @@ TEST(ResampleSkeleton, ThickTubeKeepsOneInnerNode) {
 }
 
 TEST(ResampleSkeleton, YKeepsItsBranchNodeAndEnds) {
-  const Skeleton r = resample_skeleton(test::y_skeleton(10, 4.0, 0.5));
+  const Skeleton r = resample_skeleton(test::y_skeleton(10, 3.6, 0.5));
   std::size_t branch = 0, ends = 0;
   for (const auto& nb : r.neighbors) branch += nb.size() == 3, ends += nb.size() == 1;
   EXPECT_EQ(branch, 1u);
   EXPECT_EQ(ends, 3u);
   EXPECT_EQ(r.points[0], Vec3::Zero());
   EXPECT_EQ(skeleton_arcs(r).size(), 3u);
-  EXPECT_EQ(r.num_nodes(), 1u + 3u * 2u);  // each branch of length 4 split into 2 intervals of 2
+  EXPECT_EQ(r.num_nodes(), 1u + 3u * 2u);  // each branch of length 3.6 split into 2 intervals of 1.8
 }
 
 TEST(ResampleSkeleton, RingStaysAClosedCycle) {
