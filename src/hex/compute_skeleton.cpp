@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/deterministic_arena.h"
 #include "subfab/core/error.h"
 
 namespace subfab {
@@ -40,6 +41,43 @@ SurfaceMesh to_surface_mesh(const Mesh& mesh) {
   return sm;
 }
 
+//! A small closed UV sphere (8 x 5), for the warm-up.
+Mesh small_sphere() {
+  Mesh m;
+  const int around = 8, rings = 5;
+  m.vertices.push_back(Vec3(0, 0, -1));
+  for (int i = 1; i < rings; ++i)
+    for (int j = 0; j < around; ++j) {
+      const double a = 3.141592653589793 * i / rings, b = 2 * 3.141592653589793 * j / around;
+      m.vertices.push_back(Vec3(1.5 * std::sin(a) * std::cos(b), std::sin(a) * std::sin(b), -std::cos(a)));
+    }
+  m.vertices.push_back(Vec3(0, 0, 1));
+  auto id = [&](int ring, int j) { return 1 + ring * around + (j + around) % around; };
+  const int last = static_cast<int>(m.vertices.size()) - 1;
+  for (int j = 0; j < around; ++j) m.faces.push_back({0, id(0, j + 1), id(0, j)});
+  for (int i = 0; i + 2 < rings; ++i)
+    for (int j = 0; j < around; ++j) {
+      m.faces.push_back({id(i, j), id(i, j + 1), id(i + 1, j + 1)});
+      m.faces.push_back({id(i, j), id(i + 1, j + 1), id(i + 1, j)});
+    }
+  for (int j = 0; j < around; ++j) m.faces.push_back({last, id(rings - 2, j), id(rings - 2, j + 1)});
+  return m;
+}
+
+//! The flow's Delaunay step uses CGAL's lazy exact numbers, whose per-thread
+//! constants are created on first use: create them on the ordinary heap, once
+//! per thread, before any arena (an arena's memory is gone when it ends).
+void warm_up_flow() {
+  thread_local bool done = false;
+  if (done) return;
+  done = true;
+  detail::SuspendArena heap;
+  SurfaceMesh sm = to_surface_mesh(small_sphere());
+  McfSkeleton mcf;
+  Skeletonization skeletonize(sm);
+  skeletonize(mcf);
+}
+
 }  // namespace
 
 Skeleton compute_skeleton(const Mesh& mesh, const ComputeSkeletonOptions& options, ComputeSkeletonReport* report) {
@@ -47,34 +85,44 @@ Skeleton compute_skeleton(const Mesh& mesh, const ComputeSkeletonOptions& option
   Skeleton raw;
   {
     StageScope stage(options.progress, "skeleton (mean curvature flow)");
-    SurfaceMesh sm = to_surface_mesh(mesh);
-    McfSkeleton mcf;
-    Skeletonization skeletonize(sm);
-    skeletonize(mcf);
-    const std::size_t n = boost::num_vertices(mcf);
-    if (n == 0) throw AlgorithmError("the mean-curvature-flow skeleton is empty; pass a skeleton with --skeleton");
-    Tree tree(faces(sm).first, faces(sm).second, sm);
-    tree.accelerate_distance_queries();
-    std::vector<McfSkeleton::vertex_descriptor> order;
-    for (auto v : CGAL::make_range(boost::vertices(mcf))) order.push_back(v);
-    std::vector<int> index(n, -1);
-    for (std::size_t i = 0; i < order.size(); ++i) {
-      const auto& node = mcf[order[i]];
-      const Vec3 p(node.point.x(), node.point.y(), node.point.z());
-      double sum = 0;
-      for (auto sv : node.vertices) {
-        const Point& q = sm.point(sv);
-        sum += std::sqrt(CGAL::squared_distance(node.point, q));
+    // CGAL's flow orders some edge collapses by handle address: a private
+    // bump allocator makes addresses follow allocation order, so the result
+    // does not depend on the heap's history (threads, earlier work).
+    bool empty = false;
+    warm_up_flow();
+    {
+      detail::DeterministicArena arena;
+      SurfaceMesh sm = to_surface_mesh(mesh);
+      McfSkeleton mcf;
+      Skeletonization skeletonize(sm);
+      skeletonize(mcf);
+      const std::size_t n = boost::num_vertices(mcf);
+      empty = n == 0;
+      Tree tree(faces(sm).first, faces(sm).second, sm);
+      tree.accelerate_distance_queries();
+      std::vector<McfSkeleton::vertex_descriptor> order;
+      for (auto v : CGAL::make_range(boost::vertices(mcf))) order.push_back(v);
+      std::vector<std::pair<std::size_t, std::size_t>> edges;
+      for (auto e : CGAL::make_range(boost::edges(mcf)))
+        edges.emplace_back(static_cast<std::size_t>(boost::source(e, mcf)), static_cast<std::size_t>(boost::target(e, mcf)));
+      std::vector<double> radii(n, 0.0);
+      for (std::size_t i = 0; i < order.size(); ++i) {
+        const auto& node = mcf[order[i]];
+        double sum = 0;
+        for (auto sv : node.vertices) sum += std::sqrt(CGAL::squared_distance(node.point, sm.point(sv)));
+        double radius = node.vertices.empty() ? 0.0 : sum / static_cast<double>(node.vertices.size());
+        if (!(radius > 0)) radius = std::sqrt(tree.squared_distance(node.point));
+        radii[i] = radius;
       }
-      double radius = node.vertices.empty() ? 0.0 : sum / static_cast<double>(node.vertices.size());
-      if (!(radius > 0)) radius = std::sqrt(tree.squared_distance(node.point));
-      if (!(radius > 0)) radius = 1e-9 * bounding_box(mesh).diagonal();
-      index[i] = raw.add_node(p, radius);
+      detail::SuspendArena heap;  // the skeleton outlives the arena
+      const double tiny = 1e-9 * bounding_box(mesh).diagonal();
+      for (std::size_t i = 0; i < order.size(); ++i) {
+        const auto& point = mcf[order[i]].point;
+        raw.add_node(Vec3(point.x(), point.y(), point.z()), radii[i] > 0 ? radii[i] : tiny);
+      }
+      for (const auto& [a, b] : edges) raw.add_edge(static_cast<int>(a), static_cast<int>(b));
     }
-    for (auto e : CGAL::make_range(boost::edges(mcf))) {
-      const auto a = boost::source(e, mcf), b = boost::target(e, mcf);
-      raw.add_edge(index[static_cast<std::size_t>(a)], index[static_cast<std::size_t>(b)]);
-    }
+    if (empty) throw AlgorithmError("the mean-curvature-flow skeleton is empty; pass a skeleton with --skeleton");
     r.raw_nodes = raw.num_nodes();
     r.raw_edges = raw.num_edges();
   }
