@@ -1,0 +1,46 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file optimize_hex_mesh.h
+//! Projection and finalisation of the hexahedral mesh (thesis D.6): the
+//! boundary vertices are kept on the input surface while the vertices are
+//! relaxed and the elements untangled, maximising the minimum scaled
+//! Jacobian. The thesis used the edge-cone rectification of Livesu et al.
+//! 2015 (no public code); this is a simpler, deterministic scheme:
+//!   1. relaxation: `relax_iterations` Jacobi passes; an interior vertex moves
+//!      to the mean of its edge neighbours, a boundary vertex to the mean of
+//!      its boundary neighbours, then back onto the surface (closest point);
+//!   2. smart smoothing: Gauss-Seidel passes in vertex order, each vertex
+//!      moving to that mean only if the worst scaled Jacobian of its
+//!      hexahedra does not drop;
+//!   3. untangling: for every vertex of a hexahedron whose scaled Jacobian is
+//!      under target_quality, a pattern search (6 directions, or 4 tangent
+//!      ones on the surface, step halved on failure) maximises the worst
+//!      scaled Jacobian of its hexahedra.
+//! Steps 2 and 3 alternate for `passes` passes or until nothing improves.
+#pragma once
+
+#include <cstddef>
+
+#include "subfab/core/progress.h"
+#include "subfab/hex/hex_mesh.h"
+#include "subfab/mesh/mesh.h"
+
+namespace subfab {
+
+struct OptimizeHexMeshOptions {
+  int relax_iterations = 5;     // plain Laplacian passes (step 1)
+  int passes = 30;              // smart smoothing + untangling passes (steps 2 and 3)
+  double target_quality = 0.5;  // hexahedra under this scaled Jacobian get their vertices optimised
+  Progress* progress = nullptr;
+};
+
+struct OptimizeHexMeshReport {
+  double min_before = 0;  // worst scaled Jacobian after relaxation (step 1)
+  double min_after = 0;
+  std::size_t num_inverted = 0;  // hexahedra with scaled Jacobian <= 0 at the end
+  int passes = 0;
+};
+
+//! Optimises `mesh` in place; its boundary vertices are moved onto `surface`.
+OptimizeHexMeshReport optimize_hex_mesh(HexMesh& mesh, const Mesh& surface, const OptimizeHexMeshOptions& options = {});
+
+}  // namespace subfab
