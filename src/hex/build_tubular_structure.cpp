@@ -343,7 +343,13 @@ TubularStructure build_tubular_structure(const Skeleton& skeleton, const Tubular
     if (degree == 2) continue;
     Cube& cube = cubes[v];
     cube.centre = skeleton.points[v];
-    cube.half = options.core_scale * skeleton.radii[v];
+    // no wider than the thinnest arc it meets, so that each face fits its tube
+    double radius = skeleton.radii[v];
+    for (const ArcEnd& e : ends[v]) {
+      const auto& nodes = arcs[idx(e.arc)].nodes;
+      radius = std::min(radius, skeleton.radii[idx(e.at_front ? nodes[1] : nodes[nodes.size() - 2])]);
+    }
+    cube.half = options.core_scale * radius;
     const auto frames = candidate_frames(ends[v]);
     Assignment best;
     for (int sub = 1;; ++sub) {

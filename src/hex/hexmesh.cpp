@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "geometry/hausdorff_distance.h"
+#include "hex/hex_topology.h"
 #include "hex/surface_projector.h"
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
@@ -17,6 +18,8 @@ namespace subfab {
 namespace {
 
 std::size_t idx(int v) { return static_cast<std::size_t>(v); }
+
+constexpr double kMaxCoreFraction = 0.6;  // see place_pillow()
 
 class Timer {
  public:
@@ -32,24 +35,65 @@ class Timer {
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 
-//! Places the pillow's outer vertices on the surface: a ray from each core
-//! boundary vertex along its (area-weighted) boundary normal.
-void place_pillow(HexMesh& mesh, const std::vector<Quad>& core_boundary, const std::vector<int>& outer,
+//! Places the pillow's outer vertices on the surface: a ray from the
+//! skeleton point each core vertex belongs to (its cube's or section's
+//! centre) through the vertex, first hit beyond the vertex. Rays from one
+//! centre cannot cross, so a cube or a section does not fold. The closest
+//! point is the fallback (vertex outside, or no hit).
+void place_pillow(HexMesh& mesh, const std::vector<Vec3>& anchors, const std::vector<int>& outer,
                   const detail::SurfaceProjector& projector) {
-  std::vector<Vec3> normal(mesh.vertices.size(), Vec3::Zero());
-  for (const Quad& q : core_boundary) {
-    const auto& p = mesh.vertices;
-    const Vec3 n = (p[idx(q[2])] - p[idx(q[0])]).cross(p[idx(q[3])] - p[idx(q[1])]);
-    for (int v : q) normal[idx(v)] += n;
-  }
+  std::vector<Vec3> inner(mesh.vertices.size());
   parallel_for(0, outer.size(), [&](std::size_t v) {
     if (outer[v] < 0) return;
     const Vec3 origin = mesh.vertices[v];
     Vec3 target = projector.closest_point(origin);
-    if (projector.inside(origin) && normal[v].norm() > 0)
-      if (const auto hit = projector.first_hit(origin, normal[v].normalized())) target = *hit;
+    inner[v] = origin;
+    const Vec3 dir = origin - anchors[v];
+    if (dir.norm() > 0 && projector.inside(origin))
+      if (const auto hit = projector.first_hit(origin, dir.normalized()))
+        if ((*hit - origin).norm() <= 3 * (target - origin).norm()) {  // not across a gap
+          target = *hit;
+          // keep the padding layer thick: the core vertex at most
+          // kMaxCoreFraction of the way from its centre to the surface
+          const double reach = (target - anchors[v]).norm();
+          if (dir.norm() > kMaxCoreFraction * reach) inner[v] = anchors[v] + kMaxCoreFraction * reach * dir.normalized();
+        }
     mesh.vertices[idx(outer[v])] = target;
   }, 256);
+  for (std::size_t v = 0; v < outer.size(); ++v)
+    if (outer[v] >= 0) mesh.vertices[v] = inner[v];
+}
+
+//! Moves every boundary vertex onto the surface along the pillow edge that
+//! joins it to the interior: a ray from the inner end of that edge through
+//! the vertex, first hit (closest point when it misses). Done after each
+//! subdivision, so new boundary vertices follow the shape level by level
+//! without the folds a closest-point projection makes across thin parts.
+void project_boundary_radially(HexMesh& mesh, const detail::SurfaceProjector& projector) {
+  const detail::HexTopology topo = detail::hex_topology(mesh);
+  std::vector<Vec3> next = mesh.vertices;
+  parallel_for(0, mesh.vertices.size(), [&](std::size_t v) {
+    if (!topo.on_boundary[v]) return;
+    Vec3 dir = Vec3::Zero();
+    Vec3 inner = Vec3::Zero();
+    int count = 0;
+    for (int w : topo.neighbors[v])
+      if (!topo.on_boundary[idx(w)]) {
+        inner += mesh.vertices[idx(w)];
+        ++count;
+      }
+    if (count > 0) {
+      inner /= count;
+      dir = mesh.vertices[v] - inner;
+    }
+    const Vec3 closest = projector.closest_point(mesh.vertices[v]);
+    next[v] = closest;
+    // the ray's hit, unless it jumped across a gap to another part
+    if (const auto hit = dir.norm() > 0 ? projector.first_hit(inner, dir.normalized()) : std::nullopt)
+      if ((*hit - mesh.vertices[v]).norm() <= 2 * (closest - mesh.vertices[v]).norm() + 0.25 * dir.norm())
+        next[v] = *hit;
+  }, 256);
+  mesh.vertices = std::move(next);
 }
 
 }  // namespace
@@ -74,32 +118,51 @@ HexMeshResult hexmesh(const Mesh& surface, const Skeleton* skeleton, const HexMe
     r.resampled = resample_skeleton(r.skeleton, options.resample);
   }
   timer.lap("resample");
+  const detail::SurfaceProjector projector(surface);
   {
     StageScope stage(progress, "tubular structure");
-    r.structure_info = build_tubular_structure(r.resampled, options.tubular);
+    // the core is sized from the maximal spheres: never larger than the
+    // distance from the node to the surface
+    Skeleton sized = r.resampled;
+    for (std::size_t v = 0; v < sized.num_nodes(); ++v) {
+      const double d = (projector.closest_point(sized.points[v]) - sized.points[v]).norm();
+      if (d > 0) sized.radii[v] = std::min(sized.radii[v], d);
+    }
+    r.structure_info = build_tubular_structure(sized, options.tubular);
     r.structure = r.structure_info.mesh;
   }
   timer.lap("tubular structure");
-  const detail::SurfaceProjector projector(surface);
   HexMesh mesh = r.structure;
   {
-    StageScope stage(progress, "pillow and subdivide");
-    const std::vector<Quad> core_boundary = boundary_quads(mesh);
+    StageScope stage(progress, "pillow");
     const std::vector<int> outer = pillow_hex_mesh(mesh);
-    place_pillow(mesh, core_boundary, outer, projector);
+    place_pillow(mesh, r.structure_info.vertex_anchor, outer, projector);
     int levels = options.subdivisions;
     if (levels < 0) {
       levels = 1;
       while (mesh.hexes.size() * (std::size_t{1} << (3 * (levels + 1))) <= options.max_hexes) ++levels;
     }
     r.subdivisions = levels;
-    for (int i = 0; i < levels; ++i) mesh = subdivide_hex_mesh(mesh);
   }
-  timer.lap("pillow + subdivide");
-  {
-    OptimizeHexMeshOptions oo = options.optimize;
-    oo.progress = progress;
+  timer.lap("pillow");
+  // coarse to fine: optimise, split, put the new boundary vertices on the
+  // surface, optimise again (an untangled mesh splits into an almost
+  // untangled one, so each level only has small repairs to make)
+  OptimizeHexMeshOptions oo = options.optimize;
+  oo.progress = progress;
+  const bool smooth = oo.smooth;
+  oo.smooth = smooth && r.subdivisions == 0;  // smoothing a coarse level drags the core to the surface
+  r.optimize = optimize_hex_mesh(mesh, surface, oo);
+  for (int i = 0; i < r.subdivisions; ++i) {
+    oo.smooth = smooth && i + 1 == r.subdivisions;
+    {
+      StageScope stage(progress, "subdivide and project");
+      mesh = subdivide_hex_mesh(mesh);
+      project_boundary_radially(mesh, projector);
+    }
+    const double first_min = r.optimize.min_before;
     r.optimize = optimize_hex_mesh(mesh, surface, oo);
+    r.optimize.min_before = std::min(first_min, r.optimize.min_before);
   }
   timer.lap("project + optimise");
   {

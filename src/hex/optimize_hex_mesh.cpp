@@ -15,6 +15,8 @@ namespace {
 
 std::size_t idx(int v) { return static_cast<std::size_t>(v); }
 
+constexpr double kInvertedMargin = 0.02;  // the last-resort pass lifts elements above this
+
 struct Optimizer {
   HexMesh& mesh;
   const detail::HexTopology& topo;
@@ -59,7 +61,7 @@ struct Optimizer {
     for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
       const double before = worst_at(v);
       const Vec3 target = mean_target(v);
-      if (worst_if(v, target) >= std::min(before, 0.999)) {  // no worse (ignore the last fraction near 1)
+      if (worst_if(v, target) >= std::min(before, kSmoothCap)) {  // no worse (ignoring changes near 1)
         mesh.vertices[v] = target;
         ++moved;
       }
@@ -67,37 +69,85 @@ struct Optimizer {
     return moved;
   }
 
-  //! Pattern search on the worst scaled Jacobian around v; true if improved.
-  bool untangle_vertex(std::size_t v) {
-    double best = worst_at(v);
-    const double start = best;
-    double step = 0.25 * edge_scale(v);
-    Vec3 normal = Vec3::UnitZ();
-    if (topo.on_boundary[v]) surface.closest_point(mesh.vertices[v], &normal);
-    for (int iter = 0; iter < 12 && step > 0; ++iter) {
-      Vec3 dirs[6] = {Vec3::UnitX(), -Vec3::UnitX(), Vec3::UnitY(), -Vec3::UnitY(), Vec3::UnitZ(), -Vec3::UnitZ()};
-      int num_dirs = 6;
-      if (topo.on_boundary[v]) {
-        const Vec3 a = (std::abs(normal.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY()).cross(normal).normalized();
-        const Vec3 b = normal.cross(a);
-        dirs[0] = a, dirs[1] = -a, dirs[2] = b, dirs[3] = -b;
-        num_dirs = 4;
+  //! Soft-min energy of the corners of v's hexahedra: sum of
+  //! exp(-sharpness x corner scaled Jacobian); dominated by the worst corners
+  //! but smooth, so a gradient step can trade one corner against another.
+  double energy_at(std::size_t v) const {
+    double e = 0;
+    for (int h : topo.vertex_hexes[v]) {
+      const Hex& hex = mesh.hexes[idx(h)];
+      for (std::size_t i = 0; i < 8; ++i) {
+        const auto& n = kHexCornerNeighbors[i];
+        const Vec3& p = mesh.vertices[idx(hex[i])];
+        Vec3 ed[3];
+        double alpha = 0;
+        bool degenerate = false;
+        for (std::size_t k = 0; k < 3; ++k) {
+          ed[k] = mesh.vertices[idx(hex[idx(n[k])])] - p;
+          const double len = ed[k].norm();
+          if (!(len > 0)) degenerate = true;
+          else ed[k] /= len;
+        }
+        alpha = degenerate ? -1.0 : ed[0].dot(ed[1].cross(ed[2]));
+        e += std::exp(-kSharpness * alpha);
       }
-      bool improved = false;
-      for (int d = 0; d < num_dirs; ++d) {
-        Vec3 p = mesh.vertices[v] + step * dirs[d];
-        if (topo.on_boundary[v]) p = surface.closest_point(p);
-        const double q = worst_if(v, p);
-        if (q > best + 1e-9) {
-          best = q;
-          mesh.vertices[v] = p;
-          improved = true;
+    }
+    return e;
+  }
+  double energy_if(std::size_t v, const Vec3& p) {
+    const Vec3 old = mesh.vertices[v];
+    mesh.vertices[v] = p;
+    const double e = energy_at(v);
+    mesh.vertices[v] = old;
+    return e;
+  }
+
+  //! A few gradient steps (central differences, backtracking) on the soft-min
+  //! energy around v; a boundary vertex moves in the surface's tangent plane
+  //! and is put back on the surface. True if the energy went down.
+  bool untangle_vertex(std::size_t v, bool free_boundary = false) {
+    const bool constrained = topo.on_boundary[v] && !free_boundary;
+    const double scale = edge_scale(v);
+    if (!(scale > 0)) return false;
+    const double h = 1e-4 * scale;
+    const double start = energy_at(v);
+    double current = start;
+    for (int iter = 0; iter < 4; ++iter) {
+      const Vec3 p = mesh.vertices[v];
+      Vec3 grad;
+      for (int k = 0; k < 3; ++k) {
+        Vec3 d = Vec3::Zero();
+        d[k] = h;
+        grad[k] = (energy_if(v, p + d) - energy_if(v, p - d)) / (2 * h);
+      }
+      if (constrained) {
+        Vec3 normal;
+        surface.closest_point(p, &normal);
+        grad -= grad.dot(normal) * normal;
+      }
+      const double g = grad.norm();
+      if (!(g > 0)) break;
+      const Vec3 dir = -grad / g;
+      double step = 0.2 * scale;
+      bool moved = false;
+      for (int ls = 0; ls < 10; ++ls, step *= 0.5) {
+        Vec3 q = p + step * dir;
+        if (constrained) q = surface.closest_point(q);
+        const double e = energy_if(v, q);
+        if (e < current) {
+          mesh.vertices[v] = q;
+          current = e;
+          moved = true;
+          break;
         }
       }
-      if (!improved) step *= 0.5;
+      if (!moved) break;
     }
-    return best > start + 1e-9;
+    return current < start * (1 - 1e-9);
   }
+
+  static constexpr double kSharpness = 10.0;
+  static constexpr double kSmoothCap = 0.999;
 };
 
 }  // namespace
@@ -123,7 +173,7 @@ OptimizeHexMeshReport optimize_hex_mesh(HexMesh& mesh, const Mesh& surface, cons
   StageScope stage(options.progress, "optimise");
   for (int pass = 0; pass < options.passes; ++pass) {
     report.passes = pass + 1;
-    opt.smart_smooth();
+    if (options.smooth) opt.smart_smooth();
     const auto sj = scaled_jacobians(mesh);
     std::vector<bool> bad(mesh.vertices.size(), false);
     for (std::size_t h = 0; h < sj.size(); ++h)
@@ -134,6 +184,21 @@ OptimizeHexMeshReport optimize_hex_mesh(HexMesh& mesh, const Mesh& surface, cons
       if (bad[v]) improved += opt.untangle_vertex(v);
     if (options.progress) options.progress->update(static_cast<std::size_t>(pass + 1), static_cast<std::size_t>(options.passes));
     if (improved == 0) break;
+  }
+  // last resort for elements still inverted: their boundary vertices may
+  // leave the surface (validity first; the distance report shows the cost)
+  for (int pass = 0; pass < options.passes; ++pass) {
+    const auto sj = scaled_jacobians(mesh);
+    std::vector<bool> bad(mesh.vertices.size(), false);
+    bool any = false;
+    for (std::size_t h = 0; h < sj.size(); ++h)
+      if (sj[h] <= kInvertedMargin) {
+        any = true;
+        for (int v : mesh.hexes[h]) bad[idx(v)] = true;
+      }
+    if (!any) break;
+    for (std::size_t v = 0; v < bad.size(); ++v)
+      if (bad[v]) opt.untangle_vertex(v, true);
   }
   const auto sj = scaled_jacobians(mesh);
   report.min_after = sj.empty() ? 1.0 : *std::min_element(sj.begin(), sj.end());

@@ -5,7 +5,8 @@
 //! curve-skeleton, inside the shape.
 //!
 //!   for every branching or terminal node (degree != 2):
-//!     a cube (an n x n x n grid of hexahedra, half-size core_scale x radius)
+//!     a cube (an n x n x n grid of hexahedra, half-size core_scale x the
+//!     smallest radius among the node and its arcs' first inner nodes)
 //!     oriented by the directions of its incident arcs: every candidate frame
 //!     built from two arc directions is tried, each arc end is assigned its
 //!     own face quad (optimal assignment when n = 1, greedy otherwise) and the
@@ -32,7 +33,7 @@
 namespace subfab {
 
 struct TubularStructureOptions {
-  double core_scale = 0.5;  // half-size of cubes and tube sections, x the node's radius
+  double core_scale = 0.6;  // half-size of cubes and tube sections, x the node's radius
   double min_dot = 0.5;     // worst accepted cos(angle) between an arc and its face's normal before subdividing
   double clearance = 1.25;  // arc nodes nearer a cube than this x its half-size (along the face normal) are skipped
 };
