@@ -7,17 +7,12 @@
 
 #include "subfab/hex/scaled_jacobian.h"
 #include "subfab/hex/subdivide_hex_mesh.h"
+#include "support/hex_test_shapes.h"
 
 namespace subfab {
 namespace {
 
-HexMesh unit_cube() {
-  HexMesh m;
-  m.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0),
-                Vec3(0, 0, 1), Vec3(1, 0, 1), Vec3(1, 1, 1), Vec3(0, 1, 1)};
-  m.hexes = {{0, 1, 2, 3, 4, 5, 6, 7}};
-  return m;
-}
+HexMesh unit_cube() { return test::unit_hex_cube(); }
 
 TEST(PillowHexMesh, CubeGetsSixPaddingHexahedra) {
   HexMesh m = unit_cube();

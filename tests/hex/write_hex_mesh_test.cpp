@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include "support/hex_test_shapes.h"
 
 namespace subfab {
 namespace {
@@ -17,13 +18,7 @@ std::string slurp(const std::filesystem::path& p) {
   return s.str();
 }
 
-HexMesh unit_cube() {
-  HexMesh m;
-  m.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0),
-                Vec3(0, 0, 1), Vec3(1, 0, 1), Vec3(1, 1, 1), Vec3(0, 1, 1)};
-  m.hexes = {{0, 1, 2, 3, 4, 5, 6, 7}};
-  return m;
-}
+HexMesh unit_cube() { return test::unit_hex_cube(); }
 
 TEST(WriteHexMesh, MeditHasOneBasedHexahedra) {
   const auto dir = std::filesystem::path(SUBFAB_TEST_TMP_DIR) / "write_hex_mesh";

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "subfab/hex/hex_mesh.h"
 #include "subfab/hex/skeleton.h"
 #include "subfab/mesh/mesh.h"
 
@@ -80,6 +81,15 @@ inline Skeleton ring_skeleton(int n = 16, double big = 2.0, double r = 0.5) {
   for (int i = 0; i < n; ++i) s.add_node(big * Vec3(std::cos(2 * pi * i / n), std::sin(2 * pi * i / n), 0), r);
   for (int i = 0; i < n; ++i) s.add_edge(i, (i + 1) % n);
   return s;
+}
+
+//! The unit cube [0,1]^3 as one hexahedron (VTK order).
+inline HexMesh unit_hex_cube() {
+  HexMesh m;
+  m.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0),
+                Vec3(0, 0, 1), Vec3(1, 0, 1), Vec3(1, 1, 1), Vec3(0, 1, 1)};
+  m.hexes = {{0, 1, 2, 3, 4, 5, 6, 7}};
+  return m;
 }
 
 }  // namespace subfab::test
