@@ -16,6 +16,8 @@ namespace {
 std::size_t idx(int v) { return static_cast<std::size_t>(v); }
 
 constexpr double kInvertedMargin = 0.02;  // the last-resort pass lifts elements above this
+constexpr double kProgress = 1e-3;        // improvement of the worst element that counts as progress
+constexpr int kPatience = 10;             // passes without progress before giving up
 
 struct Optimizer {
   HexMesh& mesh;
@@ -171,6 +173,8 @@ OptimizeHexMeshReport optimize_hex_mesh(HexMesh& mesh, const Mesh& surface, cons
   };
   report.min_before = worst();
   StageScope stage(options.progress, "optimise");
+  double best = report.min_before;
+  int since_progress = 0;
   for (int pass = 0; pass < options.passes; ++pass) {
     report.passes = pass + 1;
     if (options.smooth) opt.smart_smooth();
@@ -179,11 +183,20 @@ OptimizeHexMeshReport optimize_hex_mesh(HexMesh& mesh, const Mesh& surface, cons
     for (std::size_t h = 0; h < sj.size(); ++h)
       if (sj[h] < options.target_quality)
         for (int v : mesh.hexes[h]) bad[idx(v)] = true;
-    std::size_t improved = 0;
     for (std::size_t v = 0; v < bad.size(); ++v)
-      if (bad[v]) improved += opt.untangle_vertex(v);
+      if (bad[v]) opt.untangle_vertex(v);
     if (options.progress) options.progress->update(static_cast<std::size_t>(pass + 1), static_cast<std::size_t>(options.passes));
-    if (improved == 0) break;
+    // stop when every element is good enough, or when the worst one has
+    // not improved by kProgress for kPatience passes
+    const auto after = scaled_jacobians(mesh);
+    const double worst_now = after.empty() ? 1.0 : *std::min_element(after.begin(), after.end());
+    if (worst_now >= options.target_quality) break;
+    if (worst_now > best + kProgress) {
+      best = worst_now;
+      since_progress = 0;
+    } else if (++since_progress >= kPatience) {
+      break;
+    }
   }
   // last resort for elements still inverted: their boundary vertices may
   // leave the surface (validity first; the distance report shows the cost)

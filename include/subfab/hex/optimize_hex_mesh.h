@@ -28,7 +28,7 @@ namespace subfab {
 
 struct OptimizeHexMeshOptions {
   int relax_iterations = 0;     // plain Laplacian passes (step 1; they can fold curved tubes, off by default)
-  int passes = 30;              // smart smoothing + untangling passes (steps 2 and 3)
+  int passes = 100;             // at most this many smart smoothing + untangling passes (steps 2 and 3)
   double target_quality = 0.5;  // hexahedra under this scaled Jacobian get their vertices optimised
   bool smooth = true;           // run the smart smoothing of step 2 (else untangling only)
   Progress* progress = nullptr;
