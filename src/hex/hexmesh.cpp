@@ -164,7 +164,7 @@ HexMeshResult hexmesh(const Mesh& surface, const Skeleton* skeleton, const HexMe
     r.optimize = optimize_hex_mesh(mesh, surface, oo);
     r.optimize.min_before = std::min(first_min, r.optimize.min_before);
   }
-  timer.lap("project + optimise");
+  timer.lap("subdivide + project + optimise");
   {
     StageScope stage(progress, "measure");
     r.mesh = std::move(mesh);

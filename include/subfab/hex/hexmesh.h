@@ -6,12 +6,15 @@
 //!   2. resample_skeleton() (D.4);
 //!   3. build_tubular_structure() (D.3): the conforming core of cubes and tubes;
 //!   4. pillow_hex_mesh() (D.6): one padding layer whose outer vertices are
-//!      placed on the surface by casting a ray from each core vertex along its
-//!      boundary normal (closest point when the ray misses);
-//!   5. subdivide_hex_mesh() `subdivisions` times (regular 2 x 2 x 2 splits);
-//!   6. optimize_hex_mesh() (D.6): boundary on the surface, relaxation,
-//!      untangling for the worst scaled Jacobian;
-//!   7. measures: conformity, scaled Jacobians, distance to the input.
+//!      placed on the surface by casting a ray from each core vertex's centre
+//!      (its cube's or section's skeleton point) through the vertex; the core
+//!      vertex is pulled in to at most 0.6 of that ray's length so the padding
+//!      stays thick;
+//!   5. coarse to fine: optimize_hex_mesh() (D.6: boundary on the surface,
+//!      untangling), then `subdivisions` times: subdivide_hex_mesh() (regular
+//!      2 x 2 x 2 split), new boundary vertices onto the surface along their
+//!      padding edge, optimize_hex_mesh() again (smoothing on the last level);
+//!   6. measures: conformity, scaled Jacobians, distance to the input.
 //! Not done yet: resolution control (D.5, cones and the integer programme).
 #pragma once
 

@@ -11,11 +11,16 @@
 //!   2. smart smoothing: Gauss-Seidel passes in vertex order, each vertex
 //!      moving to that mean only if the worst scaled Jacobian of its
 //!      hexahedra does not drop;
-//!   3. untangling: for every vertex of a hexahedron whose scaled Jacobian is
-//!      under target_quality, a pattern search (6 directions, or 4 tangent
-//!      ones on the surface, step halved on failure) maximises the worst
-//!      scaled Jacobian of its hexahedra.
-//! Steps 2 and 3 alternate for `passes` passes or until nothing improves.
+//!   3. untangling: every vertex of a hexahedron whose scaled Jacobian is
+//!      under target_quality takes a few gradient steps (central differences,
+//!      backtracking) on a soft-min energy of the corners of its hexahedra,
+//!      sum exp(-10 x corner scaled Jacobian); a boundary vertex moves in the
+//!      surface's tangent plane and is put back on the surface.
+//! Steps 2 and 3 alternate until every element reaches target_quality, or
+//! the worst one stalls for 10 passes, or `passes` passes. Then, for
+//! elements still under 0.02, a last resort lets their boundary vertices
+//! leave the surface (validity first; the distance measure shows the cost).
+//! Serial Gauss-Seidel sweeps in vertex order: deterministic.
 #pragma once
 
 #include <cstddef>
