@@ -28,6 +28,7 @@ ALLOWED = {
     "unfold": {"core", "mesh", "checks", "geometry"},
     "mill": {"core", "mesh"},
     "view": {"core", "mesh"},
+    "hex": {"core", "mesh", "checks", "geometry"},
 }
 
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"')

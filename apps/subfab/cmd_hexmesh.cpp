@@ -1,0 +1,165 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! `subfab hexmesh MESH -o OUTDIR [options]`: skeleton-driven all-hexahedral
+//! mesh of a tubular solid (thesis Appendix D). Writes hexmesh.mesh (Medit),
+//! hexmesh.vtk (legacy VTK with the scaled Jacobian per cell), hexmesh.json
+//! and skeleton.skel. Exit 2 for an unusable solid or skeleton file, 3 when
+//! the mesh is not valid (inverted element or non-conforming).
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "command.h"
+#include "subfab/core/error.h"
+#include "subfab/core/progress.h"
+#include "subfab/hex/hexmesh.h"
+#include "subfab/hex/read_skeleton.h"
+#include "subfab/hex/write_hex_mesh.h"
+#include "subfab/hex/write_skeleton.h"
+
+namespace subfab::cli {
+namespace {
+
+struct HexmeshArgs {
+  std::string mesh;
+  std::string outdir;
+  std::string skeleton;
+  bool no_scaling = false;
+  int subdivisions = -1;
+  std::size_t max_hexes = HexMeshOptions{}.max_hexes;
+  CommonOptions common;
+};
+
+nlohmann::ordered_json to_json(const HexmeshArgs& args, const Mesh& input, const HexMeshResult& r,
+                               const std::vector<std::pair<std::string, double>>& timings) {
+  nlohmann::ordered_json j;
+  j["input"] = args.mesh;
+  j["output"] = args.outdir;
+  j["input_triangles"] = input.faces.size();
+  j["skeleton"] = args.skeleton.empty() ? "computed" : args.skeleton;
+  j["skeleton_nodes"] = r.skeleton.num_nodes();
+  j["resampled_nodes"] = r.resampled.num_nodes();
+  j["cubes"] = r.structure_info.num_cubes;
+  j["subdivided_cubes"] = r.structure_info.num_subdivided_cubes;
+  j["tubes"] = r.structure_info.num_tubes;
+  j["structure_hexahedra"] = r.structure.num_hexes();
+  j["subdivisions"] = r.subdivisions;
+  j["resolution_control"] = "not implemented (D.5); --no-scaling has no effect";
+  j["vertices"] = r.mesh.num_vertices();
+  j["hexahedra"] = r.mesh.num_hexes();
+  j["boundary_quads"] = r.check.num_boundary_quads;
+  j["conforming"] = r.check.valid();
+  j["scaled_jacobian"] = {{"min", r.min_sj}, {"avg", r.avg_sj}, {"max", r.max_sj}};
+  nlohmann::ordered_json hist;
+  hist["<=0"] = r.histogram[0];
+  for (int b = 1; b <= 10; ++b) {
+    std::ostringstream key;
+    key << std::fixed << std::setprecision(1) << (b - 1) / 10.0 << "-" << b / 10.0;
+    hist[key.str()] = r.histogram[static_cast<std::size_t>(b)];
+  }
+  j["scaled_jacobian_histogram"] = hist;
+  j["inverted"] = r.histogram[0];
+  j["diagonal"] = r.diagonal;
+  j["mean_distance_fraction"] = r.diagonal > 0 ? r.mean_distance / r.diagonal : 0.0;
+  j["max_distance_fraction"] = r.diagonal > 0 ? r.max_distance / r.diagonal : 0.0;
+  nlohmann::ordered_json t;
+  double total = 0;
+  for (const auto& [name, s] : timings) t[name] = s, total += s;
+  j["seconds"] = t;
+  j["seconds_total"] = total;
+  return j;
+}
+
+int run_hexmesh(const HexmeshArgs& args) {
+  ConsoleProgress progress(std::cerr, args.common.quiet, stderr_is_terminal());
+  const auto start = std::chrono::steady_clock::now();
+  const Mesh mesh = read_closed_solid(args.mesh, progress);  // IoError / InvalidMeshError: exit 2
+  Skeleton skeleton;
+  if (!args.skeleton.empty()) {
+    StageScope stage(&progress, "read skeleton");
+    skeleton = read_skeleton(args.skeleton);  // IoError: exit 2, with the line
+  }
+  const double read_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  HexMeshOptions options;
+  options.progress = &progress;
+  options.subdivisions = args.subdivisions;
+  options.max_hexes = args.max_hexes;
+  HexMeshResult result;
+  try {
+    result = hexmesh(mesh, args.skeleton.empty() ? nullptr : &skeleton, options);
+  } catch (const InvalidArgumentError& e) {  // a bad skeleton file is bad input
+    throw IoError(args.skeleton + ": " + e.what());
+  }
+  const std::filesystem::path out(args.outdir);
+  std::vector<std::pair<std::string, double>> timings{{"read", read_seconds}};
+  timings.insert(timings.end(), result.timings.begin(), result.timings.end());
+  {
+    StageScope stage(&progress, "write");
+    const auto t0 = std::chrono::steady_clock::now();
+    std::error_code ec;
+    std::filesystem::create_directories(out, ec);
+    if (ec) throw IoError("cannot create the output folder " + out.string() + ": " + ec.message());
+    write_medit_hex_mesh(result.mesh, out / "hexmesh.mesh");
+    write_vtk_hex_mesh(result.mesh, out / "hexmesh.vtk", result.scaled_jacobian);
+    write_skeleton(result.skeleton, out / "skeleton.skel");
+    timings.emplace_back("write", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    std::ofstream json(out / "hexmesh.json");
+    json << to_json(args, mesh, result, timings).dump(2) << "\n";
+    if (!json) throw IoError("cannot write " + (out / "hexmesh.json").string());
+  }
+  if (!args.common.quiet) progress.print_timings(std::cerr);
+  if (args.common.json) {
+    std::cout << to_json(args, mesh, result, timings).dump(2) << "\n";
+  } else if (!args.common.quiet) {
+    std::cout << result.mesh.num_hexes() << " hexahedra (" << result.structure.num_hexes()
+              << " in the tubular structure, " << result.subdivisions << " subdivisions), scaled Jacobian min "
+              << result.min_sj << " avg " << result.avg_sj << ", " << result.histogram[0]
+              << " inverted; boundary distance to the input: mean "
+              << (result.diagonal > 0 ? result.mean_distance / result.diagonal : 0.0) << ", max "
+              << (result.diagonal > 0 ? result.max_distance / result.diagonal : 0.0)
+              << " of the diagonal; written to " << args.outdir << "\n";
+  }
+  if (!result.check.valid()) {
+    std::cerr << "error: the hexahedral mesh is not conforming (this is a bug; please report it with the input)\n";
+    return kExitFailed;
+  }
+  if (result.histogram[0] > 0) {
+    std::cerr << "error: " << result.histogram[0]
+              << " hexahedra are inverted or degenerate (scaled Jacobian <= 0); the mesh was written but is "
+                 "not usable for simulation. A cleaner skeleton (--skeleton) may help.\n";
+    return kExitFailed;
+  }
+  return kExitOk;
+}
+
+void add_hexmesh_options(CLI::App& sub, HexmeshArgs& args) {
+  add_solid_input(sub, args.mesh);
+  add_output_folder(sub, args.outdir);
+  sub.add_option("--skeleton", args.skeleton,
+                 "Curve-skeleton in the .skel format (header line, node count, then 'id x y z radius n "
+                 "neighbours...' per node); computed (mean curvature flow + automatic clean-up) when absent")
+      ->check(CLI::ExistingFile);
+  sub.add_flag("--no-scaling", args.no_scaling,
+               "Skip resolution control (thesis D.5); currently always skipped: not implemented yet");
+  sub.add_option("--subdivisions", args.subdivisions,
+                 "Regular 2x2x2 splits after pillowing (default: automatic, the most that stays under --max-hexes)")
+      ->check(CLI::Range(0, 6));
+  sub.add_option("--max-hexes", args.max_hexes, "Bound on the hexahedra for the automatic number of subdivisions")
+      ->default_val(args.max_hexes)
+      ->check(CLI::PositiveNumber);
+}
+
+const RegisterCommand kRegisterHexmesh(make_command<HexmeshArgs>(
+    "hexmesh", 40,
+    "Skeleton-driven all-hexahedral mesh of a tubular closed solid (thesis Appendix D): computes or reads a "
+    "curve-skeleton, resamples it, builds a conforming structure of cubes and tubes, pads, subdivides, "
+    "projects onto the surface and optimises the scaled Jacobian. Writes hexmesh.mesh (Medit), hexmesh.vtk "
+    "(VTK, scaled Jacobian per cell), hexmesh.json and skeleton.skel. Exit 2 if the input is not a closed "
+    "solid or the skeleton file is malformed, 3 if the mesh has an inverted element.",
+    add_hexmesh_options, run_hexmesh));
+
+}  // namespace
+}  // namespace subfab::cli

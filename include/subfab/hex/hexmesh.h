@@ -1,0 +1,69 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file hexmesh.h
+//! Skeleton-driven hexahedral meshing of a tubular shape (thesis Appendix D),
+//! the whole pipeline:
+//!   1. skeleton: the one given, or compute_skeleton() (flow + clean-up);
+//!   2. resample_skeleton() (D.4);
+//!   3. build_tubular_structure() (D.3): the conforming core of cubes and tubes;
+//!   4. pillow_hex_mesh() (D.6): one padding layer whose outer vertices are
+//!      placed on the surface by casting a ray from each core vertex's centre
+//!      (its cube's or section's skeleton point) through the vertex; the core
+//!      vertex is pulled in to at most 0.6 of that ray's length so the padding
+//!      stays thick;
+//!   5. coarse to fine: optimize_hex_mesh() (D.6: boundary on the surface,
+//!      untangling), then `subdivisions` times: subdivide_hex_mesh() (regular
+//!      2 x 2 x 2 split), new boundary vertices onto the surface along their
+//!      padding edge, optimize_hex_mesh() again (smoothing on the last level);
+//!   6. measures: conformity, scaled Jacobians, distance to the input.
+//! Not done yet: resolution control (D.5, cones and the integer programme).
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "subfab/core/progress.h"
+#include "subfab/hex/build_tubular_structure.h"
+#include "subfab/hex/compute_skeleton.h"
+#include "subfab/hex/hex_mesh.h"
+#include "subfab/hex/optimize_hex_mesh.h"
+#include "subfab/hex/resample_skeleton.h"
+#include "subfab/hex/skeleton.h"
+
+namespace subfab {
+
+struct HexMeshOptions {
+  ComputeSkeletonOptions skeleton;   // when no skeleton is given
+  ResampleSkeletonOptions resample;
+  TubularStructureOptions tubular;
+  int subdivisions = -1;             // regular splits after pillowing; -1: the most that keeps <= max_hexes
+  std::size_t max_hexes = 20000;     // bound for the automatic choice (at least one split is always made)
+  OptimizeHexMeshOptions optimize;
+  Progress* progress = nullptr;
+};
+
+struct HexMeshResult {
+  Skeleton skeleton;        // the skeleton used (given or computed), before resampling
+  Skeleton resampled;       // after resampling
+  HexMesh structure;        // the tubular structure (core)
+  TubularStructure structure_info;
+  HexMesh mesh;             // the final mesh
+  std::vector<double> scaled_jacobian;  // per hexahedron
+  HexMeshCheck check;
+  int subdivisions = 0;
+  double min_sj = 0, avg_sj = 0, max_sj = 0;
+  std::array<std::size_t, 11> histogram{};  // [<= 0], then (0, .1], (.1, .2], ..., (.9, 1]
+  double diagonal = 0;                      // of the input's bounding box
+  double mean_distance = 0, max_distance = 0;  // boundary vs input, model units (see hexmesh.cpp)
+  OptimizeHexMeshReport optimize;
+  std::vector<std::pair<std::string, double>> timings;  // seconds per stage
+};
+
+//! Meshes the closed solid `surface` with hexahedra. `skeleton` may be null
+//! (then it is computed). \throw InvalidArgumentError for a bad skeleton,
+//! AlgorithmError when no skeleton can be computed.
+HexMeshResult hexmesh(const Mesh& surface, const Skeleton* skeleton, const HexMeshOptions& options = {});
+
+}  // namespace subfab

@@ -1,0 +1,52 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file optimize_hex_mesh.h
+//! Projection and finalisation of the hexahedral mesh (thesis D.6): the
+//! boundary vertices are kept on the input surface while the vertices are
+//! relaxed and the elements untangled, maximising the minimum scaled
+//! Jacobian. The thesis used the edge-cone rectification of Livesu et al.
+//! 2015 (no public code); this is a simpler, deterministic scheme:
+//!   1. relaxation: `relax_iterations` Jacobi passes; an interior vertex moves
+//!      to the mean of its edge neighbours, a boundary vertex to the mean of
+//!      its boundary neighbours, then back onto the surface (closest point);
+//!   2. smart smoothing: Gauss-Seidel passes in vertex order, each vertex
+//!      moving to that mean only if the worst scaled Jacobian of its
+//!      hexahedra does not drop;
+//!   3. untangling: every vertex of a hexahedron whose scaled Jacobian is
+//!      under target_quality takes a few gradient steps (central differences,
+//!      backtracking) on a soft-min energy of the corners of its hexahedra,
+//!      sum exp(-10 x corner scaled Jacobian); a boundary vertex moves in the
+//!      surface's tangent plane and is put back on the surface.
+//! Steps 2 and 3 alternate until every element reaches target_quality, or
+//! the worst one stalls for 10 passes, or `passes` passes. Then, for
+//! elements still under 0.02, a last resort lets their boundary vertices
+//! leave the surface (validity first; the distance measure shows the cost).
+//! Serial Gauss-Seidel sweeps in vertex order: deterministic.
+#pragma once
+
+#include <cstddef>
+
+#include "subfab/core/progress.h"
+#include "subfab/hex/hex_mesh.h"
+#include "subfab/mesh/mesh.h"
+
+namespace subfab {
+
+struct OptimizeHexMeshOptions {
+  int relax_iterations = 0;     // plain Laplacian passes (step 1; they can fold curved tubes, off by default)
+  int passes = 100;             // at most this many smart smoothing + untangling passes (steps 2 and 3)
+  double target_quality = 0.5;  // hexahedra under this scaled Jacobian get their vertices optimised
+  bool smooth = true;           // run the smart smoothing of step 2 (else untangling only)
+  Progress* progress = nullptr;
+};
+
+struct OptimizeHexMeshReport {
+  double min_before = 0;  // worst scaled Jacobian after relaxation (step 1)
+  double min_after = 0;
+  std::size_t num_inverted = 0;  // hexahedra with scaled Jacobian <= 0 at the end
+  int passes = 0;
+};
+
+//! Optimises `mesh` in place; its boundary vertices are moved onto `surface`.
+OptimizeHexMeshReport optimize_hex_mesh(HexMesh& mesh, const Mesh& surface, const OptimizeHexMeshOptions& options = {});
+
+}  // namespace subfab

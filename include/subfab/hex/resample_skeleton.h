@@ -1,0 +1,31 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file resample_skeleton.h
+//! Skeleton resampling (thesis Appendix D.4): the density of the hexahedral
+//! mesh along the skeleton follows the local thickness of the shape.
+//!
+//! Every arc (see skeleton_arcs()) is parameterised by arc length on [0, 1],
+//! positions and radii interpolated linearly along its polyline. The interval
+//! [a, b] is split at its midpoint m, recursively, while the maximal spheres
+//! at the ends and at the midpoint do not overlap:
+//!     |p_a - p_m| > r_a + r_m   or   |p_m - p_b| > r_m + r_b.
+//! Every arc keeps at least one inner node (a closed cycle at least two), so
+//! that each arc becomes at least one layer of hexahedra between its ends.
+//! Branching and terminal nodes keep their position and radius.
+#pragma once
+
+#include <cstddef>
+
+#include "subfab/hex/skeleton.h"
+
+namespace subfab {
+
+struct ResampleSkeletonOptions {
+  int max_depth = 16;  // recursion limit per arc (at most 2^16 samples; a guard, never reached on real data)
+};
+
+//! The resampled skeleton: the branching and terminal nodes of `skeleton`
+//! first (in their order), then the new inner nodes arc by arc.
+//! \pre check_skeleton(skeleton) passes.
+Skeleton resample_skeleton(const Skeleton& skeleton, const ResampleSkeletonOptions& options = {});
+
+}  // namespace subfab

@@ -1,0 +1,95 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "subfab/hex/resample_skeleton.h"
+
+#include <algorithm>
+#include <vector>
+
+namespace subfab {
+namespace {
+
+//! An arc as a polyline with cumulative arc length, normalised to [0, 1].
+struct Polyline {
+  std::vector<Vec3> points;
+  std::vector<double> radii;
+  std::vector<double> t;  // normalised arc length of each point
+
+  void at(double s, Vec3& p, double& r) const {
+    const auto it = std::upper_bound(t.begin(), t.end(), s);
+    std::size_t i = static_cast<std::size_t>(std::max<std::ptrdiff_t>(1, it - t.begin()));
+    i = std::min(i, t.size() - 1);
+    const double span = t[i] - t[i - 1];
+    const double w = span > 0 ? std::clamp((s - t[i - 1]) / span, 0.0, 1.0) : 0.0;
+    p = (1 - w) * points[i - 1] + w * points[i];
+    r = (1 - w) * radii[i - 1] + w * radii[i];
+  }
+};
+
+bool spheres_apart(const Polyline& line, double a, double b) {
+  Vec3 pa, pm, pb;
+  double ra, rm, rb;
+  line.at(a, pa, ra);
+  line.at(0.5 * (a + b), pm, rm);
+  line.at(b, pb, rb);
+  return (pa - pm).norm() > ra + rm || (pm - pb).norm() > rm + rb;
+}
+
+void split(const Polyline& line, double a, double b, int depth, bool force, std::vector<double>& out) {
+  if (depth <= 0 || (!force && !spheres_apart(line, a, b))) return;
+  const double m = 0.5 * (a + b);
+  split(line, a, m, depth - 1, false, out);
+  out.push_back(m);
+  split(line, m, b, depth - 1, false, out);
+}
+
+}  // namespace
+
+Skeleton resample_skeleton(const Skeleton& skeleton, const ResampleSkeletonOptions& options) {
+  Skeleton out;
+  std::vector<int> new_index(skeleton.num_nodes(), -1);
+  for (std::size_t v = 0; v < skeleton.num_nodes(); ++v)
+    if (skeleton.neighbors[v].size() != 2 || skeleton.neighbors[v].empty())
+      new_index[v] = out.add_node(skeleton.points[v], skeleton.radii[v]);
+  const auto arcs = skeleton_arcs(skeleton);
+  for (const SkeletonArc& arc : arcs) {
+    Polyline line;
+    double length = 0;
+    for (std::size_t i = 0; i < arc.nodes.size(); ++i) {
+      const auto v = static_cast<std::size_t>(arc.nodes[i]);
+      if (i > 0) length += (skeleton.points[v] - line.points.back()).norm();
+      line.points.push_back(skeleton.points[v]);
+      line.radii.push_back(skeleton.radii[v]);
+      line.t.push_back(length);
+    }
+    for (double& t : line.t) t = length > 0 ? t / length : 0.0;
+    std::vector<double> samples;
+    if (arc.closed) {  // at least two inner nodes: a cycle of three or more
+      const double third = 1.0 / 3.0;
+      split(line, 0, third, options.max_depth, false, samples);
+      samples.push_back(third);
+      split(line, third, 2 * third, options.max_depth, false, samples);
+      samples.push_back(2 * third);
+      split(line, 2 * third, 1, options.max_depth, false, samples);
+    } else {
+      split(line, 0, 1, options.max_depth, true, samples);
+    }
+    int first = new_index[static_cast<std::size_t>(arc.nodes.front())];
+    if (first < 0) {  // closed cycle: its start node is of degree 2
+      first = out.add_node(line.points.front(), line.radii.front());
+      new_index[static_cast<std::size_t>(arc.nodes.front())] = first;
+    }
+    int prev = first;
+    for (double s : samples) {
+      Vec3 p;
+      double r;
+      line.at(s, p, r);
+      const int v = out.add_node(p, r);
+      out.add_edge(prev, v);
+      prev = v;
+    }
+    const int last = new_index[static_cast<std::size_t>(arc.nodes.back())];
+    out.add_edge(prev, last);
+  }
+  return out;
+}
+
+}  // namespace subfab

@@ -1,0 +1,68 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// `subfab hexmesh`: writes the hexahedral mesh, its report and the skeleton;
+// bad input (open mesh, malformed skeleton file) exits 2 with the reason.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "subfab/hex/read_skeleton.h"
+#include "subfab/mesh/write_mesh.h"
+#include "support/hex_test_shapes.h"
+#include "support/test_support.h"
+
+namespace subfab {
+namespace {
+
+namespace fs = std::filesystem;
+using test::quoted;
+using test::run_subfab;
+
+TEST(HexmeshCli, WritesMeshReportAndSkeleton) {
+  const fs::path dir = test::temp_dir();
+  const fs::path input = dir / "capsule.off";
+  write_mesh(test::capsule(1.0, 3.0, 32, 8, 24), input);
+  const fs::path out = dir / "hex";
+  const auto r = run_subfab("hexmesh " + quoted(input) + " -o " + quoted(out) + " --subdivisions 1 --json --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  for (const char* name : {"hexmesh.mesh", "hexmesh.vtk", "hexmesh.json", "skeleton.skel"})
+    EXPECT_TRUE(fs::exists(out / name)) << name;
+  const auto doc = nlohmann::json::parse(r.output);
+  EXPECT_TRUE(doc.at("conforming").get<bool>());
+  EXPECT_EQ(doc.at("inverted").get<int>(), 0);
+  EXPECT_GT(doc.at("scaled_jacobian").at("min").get<double>(), 0.0);
+  EXPECT_EQ(doc.at("hexahedra").get<std::size_t>(), 8 * (doc.at("structure_hexahedra").get<std::size_t>() +
+                                                            doc.at("boundary_quads").get<std::size_t>() / 4));
+  EXPECT_EQ(nlohmann::json::parse(test::slurp(out / "hexmesh.json")).at("hexahedra"), doc.at("hexahedra"));
+  // the skeleton written can be given back
+  EXPECT_NO_THROW(read_skeleton(out / "skeleton.skel"));
+  const auto again = run_subfab("hexmesh " + quoted(input) + " -o " + quoted(dir / "hex2") + " --subdivisions 1 --skeleton " +
+                                quoted(out / "skeleton.skel") + " --quiet");
+  EXPECT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_EQ(test::slurp(dir / "hex2" / "hexmesh.mesh"), test::slurp(out / "hexmesh.mesh"));
+}
+
+TEST(HexmeshCli, BadSkeletonFileExitsTwoWithTheLine) {
+  const fs::path dir = test::temp_dir();
+  const fs::path input = dir / "capsule.off";
+  write_mesh(test::capsule(), input);
+  const fs::path skel = dir / "bad.skel";
+  std::ofstream(skel) << "ID Cx Cy Cz RADIUS #NEIGHBORS NEIGHBORS_LIST\n2\n0 0 0 0 1 1 1\n1 1 0 0 1 1 5\n";
+  const auto r = run_subfab("hexmesh " + quoted(input) + " -o " + quoted(dir / "o") + " --skeleton " + quoted(skel));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("bad.skel:4:"), std::string::npos) << r.output;
+  const fs::path nocount = dir / "nocount.skel";
+  std::ofstream(nocount) << "ID Cx Cy Cz RADIUS #NEIGHBORS NEIGHBORS_LIST\n0 0 0 0 1 0\n";
+  const auto n = run_subfab("hexmesh " + quoted(input) + " -o " + quoted(dir / "o") + " --skeleton " + quoted(nocount));
+  EXPECT_EQ(n.exit_code, 2) << n.output;
+  EXPECT_NE(n.output.find("nocount.skel:2: missing node count"), std::string::npos) << n.output;
+}
+
+TEST(HexmeshCli, OpenMeshExitsTwo) {
+  const fs::path dir = test::temp_dir();
+  const auto r = run_subfab("hexmesh " + quoted(test::data_path("teapot.obj")) + " -o " + quoted(dir / "o"));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+}
+
+}  // namespace
+}  // namespace subfab
