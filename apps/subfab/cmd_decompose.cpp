@@ -4,6 +4,7 @@
 //! OUTDIR/blocks/block_NNN.obj (input frame), OUTDIR/mill/block_NNN.stl
 //! (ready to mill: direction +Z, base on z = 0), and unless --no-view
 //! OUTDIR/view.html and OUTDIR/assembly.html (src/view).
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <limits>
@@ -134,6 +135,17 @@ int run_decompose(const DecomposeArgs& args) {
            "decomposition.json; --max-overhang 0 there checks exactness)";
     progress.warn(msg.str());
   }
+  if (result.tolerance > 0 && !args.common.quiet) {
+    const double diagonal = bounding_box(mesh).diagonal();
+    std::ostringstream msg;
+    msg << "WITHIN A TOLERANCE of " << result.tolerance << " (" << result.tolerance / diagonal
+        << " x diagonal): " << result.num_tolerance_merges << " merges into milled shapes; "
+        << std::count(result.filled.begin(), result.filled.end(), char{1})
+        << " block(s) stick out of the input (undercuts filled), measured deviation bound "
+        << result.deviation_bound << " (" << result.deviation_bound / diagonal
+        << " x diagonal); every block is an exact height field (subfab validate checks the deviation)";
+    progress.warn(msg.str());
+  }
   if (!args.common.quiet) progress.print_timings(std::cerr);
 
   const double input_volume = signed_volume(mesh);
@@ -162,8 +174,12 @@ int run_decompose(const DecomposeArgs& args) {
     j["min_block_volume_fraction"] = blocks.empty() || input_volume <= 0 ? 0.0 : smallest / input_volume;
     j["max_overhang_allowed_deg"] = args.max_overhang;
     j["max_overhang_deg"] = steepest;
+    j["tolerance"] = result.tolerance;
+    j["num_tolerance_merges"] = result.num_tolerance_merges;
+    j["num_sticking_out"] = std::count(result.filled.begin(), result.filled.end(), char{1});
+    j["deviation_bound"] = result.deviation_bound;
     j["timings_s"] = {{"orient", t.orient}, {"repair", t.repair},   {"field", t.field}, {"grow", t.grow},
-                      {"cover", t.cover},   {"resolve", t.resolve}, {"carve", t.carve}, {"total", t.total}};
+                      {"cover", t.cover},   {"resolve", t.resolve}, {"carve", t.carve}, {"tolerance", t.tolerance}, {"total", t.total}};
     std::cout << j.dump(2) << "\n";
   } else if (!args.common.quiet) {
     std::cout << blocks.size() << " blocks written to " << args.outdir << " (" << result.num_selected_boxes

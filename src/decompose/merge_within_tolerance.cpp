@@ -262,7 +262,8 @@ ToleranceMergeResult merge_within_tolerance(const Mesh& solid, std::vector<Block
     std::vector<std::tuple<double, std::size_t, std::size_t>> order;
     for (std::size_t i = 0; i < blocks.size(); ++i)
       for (std::size_t j = i + 1; j < blocks.size(); ++j)
-        if (boxes_touch(boxes[i], boxes[j]) && !rejected.count({ids[i], ids[j]}))
+        if (boxes_touch(boxes[i], boxes[j]) && !rejected.count({ids[i], ids[j]}) &&
+            blocks[i].mesh.num_faces() + blocks[j].mesh.num_faces() <= options.max_pair_faces)
           order.emplace_back(std::min(volumes[i], volumes[j]), i, j);
     if (order.empty()) break;
     std::sort(order.begin(), order.end());

@@ -48,6 +48,8 @@ struct ToleranceMergeOptions {
   double screen_factor = 1.0;     // a direction is not tried when the material it would leave under a face is
                                   // thicker than this x T (measured below the face's centroid, normal to it;
                                   // a heuristic that saves time, never a validity test)
+  std::size_t max_pair_faces = 12000;  // pairs with more faces in all are not tried (the exact union and the
+                                  // milled shape of two large blocks take seconds each, and rarely pass)
   int max_rounds = 64;            // rounds of pairwise merging
   Progress* progress = nullptr;   // progress and info (nullptr: silent)
 };
