@@ -207,7 +207,7 @@ std::optional<Candidate> evaluate(std::size_t i, std::size_t j, const State& s, 
     if (!check_closed_solid(m).ok() || !is_height_field(m, d)) continue;
     // The deviation first (it rejects most), then collisions (exact booleans).
     t0 = now_s();
-    const FillDeviation dev = meter.measure(m, others, {.reach = o.tolerance, .error = error});
+    const FillDeviation dev = meter.measure(m, others, {.reach = o.tolerance, .error = error, .max_faces = o.max_region_faces});
     if (kDebug)
       std::fprintf(stderr, "  axis %d: meter %.3f s, to %.3g from %.3g (T %.3g) %s\n", int(axis), now_s() - t0,
                    dev.to_input, dev.from_input, o.tolerance, dev.failure.c_str());

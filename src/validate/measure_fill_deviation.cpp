@@ -131,6 +131,14 @@ FillDeviation FillDeviationMeter::measure(const Mesh& block, const std::vector<c
     for (int v : solid.faces[static_cast<std::size_t>(f)]) around.extend(solid.vertices[static_cast<std::size_t>(v)]);
   const double hair = 1e-6 * std::max(around.diagonal(), 1e-300) + options.error;
   const BoundingBox region = widened(around, options.reach + hair);
+  if (options.max_faces > 0) {
+    const std::size_t in_region = impl_->index.faces_near_closed_box(Box3{region.min, region.max}).size();
+    if (in_region > options.max_faces) {
+      d.failure = "region too large to measure (" + std::to_string(in_region) + " input faces > " +
+                  std::to_string(options.max_faces) + ")";
+      return d;
+    }
+  }
   std::vector<const Mesh*> close;
   for (const Mesh* o : others)
     if (o != &block && boxes_meet(bounding_box(*o), region)) close.push_back(o);

@@ -50,6 +50,8 @@ struct ToleranceMergeOptions {
                                   // a heuristic that saves time, never a validity test)
   std::size_t max_pair_faces = 12000;  // pairs with more faces in all are not tried (the exact union and the
                                   // milled shape of two large blocks take seconds each, and rarely pass)
+  std::size_t max_region_faces = 20000;  // a merge whose deviation would be measured over more input faces is
+                                  // not taken (the exact booleans of the measure grow with the region)
   int max_rounds = 64;            // rounds of pairwise merging
   Progress* progress = nullptr;   // progress and info (nullptr: silent)
 };

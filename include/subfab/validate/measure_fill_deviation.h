@@ -33,6 +33,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cstddef>
 #include <memory>
 #include <string>
 #include <vector>
@@ -46,6 +47,8 @@ struct FillDeviationOptions {
   double reach = 0.0;  // model units, >= 0: the input surface within this of the block's box is checked
                        // (set it to the tolerance, see the file comment)
   double error = 0.0;  // error bound of the Hausdorff distances, model units (> 0)
+  std::size_t max_faces = 0;  // > 0: give up (failure "region too large") when more input faces than this lie in
+                              // the region, before any boolean (the exact booleans grow with it); 0 = no cap
 };
 
 //! Result of FillDeviationMeter::measure() (model units).
