@@ -3,6 +3,7 @@
 //! keep the outer hull, else local remeshing), then orient every shell to
 //! bound a volume.
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Random.h>
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
 #include <CGAL/Polygon_mesh_processing/manifoldness.h>
@@ -75,7 +76,7 @@ bool keeps_the_shape(const RepairSurface& before, const RepairSurface& after) {
 //! replaced when the rounded copy is closed; true when it is also free of
 //! self-intersections (rounding the new points can leave tiny crossings,
 //! which the next round resolves).
-bool autorefine_round(RepairSurface& mesh) {
+bool autorefine_round(RepairSurface& mesh, bool& replaced) {
   using ExactSurface = CGAL::Surface_mesh<CGAL::Exact_predicates_exact_constructions_kernel::Point_3>;
   ExactSurface exact;
   CGAL::copy_face_graph(mesh, exact);
@@ -102,6 +103,9 @@ bool local_round(RepairSurface& mesh) {
     involved.insert(g);
   }
   RepairSurface copy = mesh;
+  // CGAL's local repair draws from its process-wide default generator:
+  // reseed it so that every call gives the same result.
+  CGAL::get_default_random() = CGAL::Random(0);
   try {
     PMP::experimental::remove_self_intersections(involved, copy);
   } catch (const std::exception&) {
@@ -127,9 +131,13 @@ MeshRepairStep resolve_self_intersections(RepairSurface& mesh, std::size_t max_r
   const std::size_t before = mesh.number_of_faces();
   orient_pieces_by_volume(mesh);
   std::string how;
+  bool autorefined = false;
   for (std::size_t round = 0; round < max_rounds && how.empty(); ++round)
-    if (autorefine_round(mesh)) how = "autorefined; the patches inside another part dropped (outer hull kept)";
-  if (how.empty() && local_round(mesh)) how = "remeshed locally (PMP::experimental::remove_self_intersections)";
+    if (autorefine_round(mesh, autorefined)) how = "autorefined; the patches inside another part dropped (outer hull kept)";
+  if (how.empty() && local_round(mesh))
+    how = autorefined ? "autorefined (outer hull kept), then the crossings left by rounding the new points to doubles "
+                        "remeshed locally (PMP::experimental::remove_self_intersections)"
+                      : "remeshed locally (PMP::experimental::remove_self_intersections)";
   if (how.empty()) {
     const auto left = intersecting_pairs(mesh);
     throw InvalidMeshError("the surface intersects itself and the repair could not resolve it: " +
