@@ -24,6 +24,7 @@ ALLOWED = {
     "geometry": {"core", "mesh"},
     "validate": {"core", "mesh", "geometry"},
     "fidelity": {"core", "mesh", "geometry", "checks"},
+    "repair": {"core", "mesh", "geometry", "checks"},
     "decompose": {"core", "mesh", "checks", "geometry", "validate", "fidelity"},
     "unfold": {"core", "mesh", "checks", "geometry"},
     "mill": {"core", "mesh"},

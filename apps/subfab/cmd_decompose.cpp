@@ -38,6 +38,7 @@ struct DecomposeArgs {
   double tolerance = 0.0;
   double tolerance_abs = std::numeric_limits<double>::infinity();
   bool no_view = false;
+  RepairInputOptions repair;
   CommonOptions common;
 };
 
@@ -71,7 +72,10 @@ int run_decompose(const DecomposeArgs& args) {
 
   ConsoleProgress progress(std::cerr, args.common.quiet, stderr_is_terminal());
   options.progress = &progress;
-  const Mesh mesh = read_closed_solid(args.mesh, progress);  // IoError / InvalidMeshError: exit 2
+  // IoError / InvalidMeshError: exit 2 (with --repair, the repaired solid)
+  const SolidInput solid = read_solid_input(args.mesh, args.repair, args.outdir, progress);
+  const Mesh& mesh = solid.mesh;
+  const nlohmann::ordered_json mesh_repair = mesh_repair_record(solid);
   const DecomposeResult result = decompose(mesh, options);
   std::vector<ExportedBlock> blocks;
   {
@@ -79,6 +83,7 @@ int run_decompose(const DecomposeArgs& args) {
     ExportInfo info;
     info.input_path = args.mesh;
     info.options = options;
+    info.mesh_repair = mesh_repair;
     blocks = export_decomposition(mesh, result, info, args.outdir);
     // The repaired input (what the blocks decompose) next to the blocks; a
     // stale one from an earlier run is removed.
@@ -169,6 +174,7 @@ int run_decompose(const DecomposeArgs& args) {
                      {"mean_deviation", result.repair.mean_deviation}};
     else
       j["repair"] = nullptr;
+    j["mesh_repair"] = mesh_repair;
     j["cover_optimal"] = result.cover_optimal;
     j["material_volume_fraction"] = input_volume > 0 ? total / input_volume : 0.0;
     j["min_block_volume_fraction"] = blocks.empty() || input_volume <= 0 ? 0.0 : smallest / input_volume;
@@ -232,6 +238,7 @@ void add_decompose_options(CLI::App& sub, DecomposeArgs& args) {
   sub.add_option("--grid-factor", args.grid_factor,
                  "Grid spacing = average edge length x G (default 1; smaller is finer and slower)")
       ->check(CLI::PositiveNumber);
+  add_repair_input_options(sub, args.repair);
 }
 
 const RegisterCommand kRegisterDecompose(make_command<DecomposeArgs>(
@@ -244,7 +251,7 @@ const RegisterCommand kRegisterDecompose(make_command<DecomposeArgs>(
     "Creases and spikes that no axis-aligned block can cover in the chosen frame are smoothed locally "
     "first (deviation capped by --max-deviation and reported; OUTDIR/input_repaired.obj is then what the "
     "blocks decompose), or refused with --exact. Exit 2 if the mesh is not a closed, manifold, consistently "
-    "oriented solid; exit 3 if no valid decomposition was found.",
+    "oriented solid (--repair repairs it first, as `subfab repair`); exit 3 if no valid decomposition was found.",
     add_decompose_options, run_decompose));
 
 }  // namespace

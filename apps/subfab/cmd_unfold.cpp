@@ -29,6 +29,7 @@ struct UnfoldArgs {
   std::string sheet;
   bool no_masks = false;
   bool no_view = false;
+  RepairInputOptions repair;
   CommonOptions common;
 };
 
@@ -78,7 +79,13 @@ int run_unfold(const UnfoldArgs& args) {
   ConsoleProgress progress(std::cerr, args.common.quiet, stderr_is_terminal());
   options.progress = &progress;
   export_options.progress = &progress;
-  const Mesh mesh = read_closed_solid(args.mesh, progress);  // IoError / InvalidMeshError: exit 2
+  // IoError / InvalidMeshError: exit 2 (with --repair, the repaired solid)
+  const SolidInput solid = read_solid_input(args.mesh, args.repair, args.outdir, progress);
+  const Mesh& mesh = solid.mesh;
+  const nlohmann::ordered_json mesh_repair = mesh_repair_record(solid);
+  export_options.input = {{"path", args.mesh},
+                          {"mesh_repair", mesh_repair},
+                          {"unfolded_mesh", mesh_repair.is_null() ? args.mesh : std::string(kMeshRepairedFile)}};
   const SimplifyUnfoldableResult result = simplify_unfoldable(mesh, options);
   export_unfolding(result.mesh, result.unfolding, result.summary, args.outdir, export_options);
   const std::filesystem::path view_page = std::filesystem::path(args.outdir) / "view.html";
@@ -99,6 +106,7 @@ int run_unfold(const UnfoldArgs& args) {
     nlohmann::ordered_json j;
     j["input"] = args.mesh;
     j["output"] = args.outdir;
+    j["mesh_repair"] = mesh_repair;
     j["spacing"] = result.spacing;
     j["min_facet_area"] = result.min_facet_area;
     j.update(unfold_summary_to_json(s));  // facets_mc ... hausdorff
@@ -136,6 +144,7 @@ void add_unfold_options(CLI::App& sub, UnfoldArgs& args) {
   sub.add_flag("--no-view", args.no_view, "Do not write OUTDIR/view.html (the model and its nets in 3D in a browser)");
   sub.add_flag("--no-masks", args.no_masks,
                "Skip the mask stage (thesis 3.3.1, Appendix A): more facets, closer to the input");
+  add_repair_input_options(sub, args.repair);
 }
 
 const RegisterCommand kRegisterUnfold(make_command<UnfoldArgs>(
@@ -143,7 +152,7 @@ const RegisterCommand kRegisterUnfold(make_command<UnfoldArgs>(
     "Simplify a closed mesh into planar facets whose normals are among the 26 lattice directions, so every "
     "fold can be cut with a V-bit, and unfold it into nets (thesis Chapter 3). Writes OUTDIR/simplified.obj, "
     "nets.svg, nets.dxf, unfold.json, preview.png and view.html (3D view in a browser; --no-view to skip). Exit 2 if the mesh is not a closed, manifold, "
-    "consistently oriented solid.",
+    "consistently oriented solid (--repair repairs it first, as `subfab repair`).",
     add_unfold_options, run_unfold));
 
 }  // namespace

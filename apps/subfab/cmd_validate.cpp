@@ -40,16 +40,24 @@ Vec3 json_vec(const Json& j, const std::string& what) {
   return Vec3(j[0].get<double>(), j[1].get<double>(), j[2].get<double>());
 }
 
-//! The repair recorded in decomposition.json ("input"."repair"), if any.
+//! A repair recorded in decomposition.json ("input"."repair": thin features;
+//! "input"."mesh_repair": `decompose --repair`), if any.
 struct RecordedRepair {
   std::string mesh;  // OUTDIR-relative path of the repaired input
   double max_deviation = 0, max_deviation_fraction = 0, mean_deviation = 0;
-  int num_features = 0;
+  std::string what;  // what it changed, for the note
+};
+
+struct RecordedRepairs {
+  std::optional<RecordedRepair> features;  // thin-feature repair (of the mesh below, when there is one)
+  std::optional<RecordedRepair> mesh;      // --repair: the solid made of the input file
+  //! The one the blocks decompose (the last applied).
+  const RecordedRepair* decomposed() const { return features ? &*features : mesh ? &*mesh : nullptr; }
 };
 
 //! Reads decomposition.json and the block files it lists.
 std::vector<ValidationBlock> read_decomposition(const fs::path& outdir, ValidationLimits& limits,
-                                                std::optional<RecordedRepair>& repair, double& max_overhang_deg,
+                                                RecordedRepairs& repairs, double& max_overhang_deg,
                                                 double& tolerance_fraction) {
   const fs::path path = outdir / "decomposition.json";
   std::ifstream in(path);
@@ -62,9 +70,17 @@ std::vector<ValidationBlock> read_decomposition(const fs::path& outdir, Validati
     const Json& input_json = doc.at("input");
     if (input_json.contains("repair") && !input_json["repair"].is_null()) {
       const Json& r = input_json["repair"];
-      repair = RecordedRepair{r.at("mesh").get<std::string>(), r.at("max_deviation").get<double>(),
-                              r.at("max_deviation_fraction").get<double>(), r.at("mean_deviation").get<double>(),
-                              r.at("num_features").get<int>()};
+      repairs.features = RecordedRepair{
+          r.at("mesh").get<std::string>(), r.at("max_deviation").get<double>(),
+          r.at("max_deviation_fraction").get<double>(), r.at("mean_deviation").get<double>(),
+          std::to_string(r.at("num_features").get<int>()) + " infeasible features smoothed"};
+    }
+    if (input_json.contains("mesh_repair") && !input_json["mesh_repair"].is_null()) {
+      const Json& r = input_json["mesh_repair"];
+      repairs.mesh = RecordedRepair{r.at("mesh").get<std::string>(), r.at("max_deviation").get<double>(),
+                                    r.at("max_deviation_fraction").get<double>(),
+                                    r.at("mean_deviation").get<double>(),
+                                    "repaired with --repair: " + r.at("applied_steps").get<std::string>()};
     }
     const Json& p = doc.at("parameters");
     if (p.contains("max_height") && !p["max_height"].is_null()) limits.max_height = p["max_height"].get<double>();
@@ -183,10 +199,11 @@ nlohmann::ordered_json milled_json(const MilledShapesReport& r, double diagonal)
 int run_validate(const ValidateArgs& args) {
   Mesh input = read_mesh(args.mesh);  // IoError / InvalidMeshError: exit 2
   ValidationOptions options;
-  std::optional<RecordedRepair> repair;
+  RecordedRepairs repairs;
   double recorded_overhang = 0.0, recorded_tolerance = 0.0;
   const std::vector<ValidationBlock> blocks =
-      read_decomposition(args.outdir, options.limits, repair, recorded_overhang, recorded_tolerance);
+      read_decomposition(args.outdir, options.limits, repairs, recorded_overhang, recorded_tolerance);
+  const RecordedRepair* repair = repairs.decomposed();
   const double tolerance_fraction = args.tolerance ? *args.tolerance : recorded_tolerance;
   const double overhang = args.max_overhang ? *args.max_overhang : recorded_overhang;
   try {
@@ -213,13 +230,20 @@ int run_validate(const ValidateArgs& args) {
     input = read_mesh(fs::path(args.outdir) / repair->mesh);
     std::ostringstream note;
     note << "NOTE: the decomposition is of the REPAIRED input " << (fs::path(args.outdir) / repair->mesh).string()
-         << " (" << repair->num_features << " infeasible features smoothed; recorded Hausdorff deviation from "
-         << args.mesh << ": " << repair->max_deviation << " = " << repair->max_deviation_fraction
-         << " of the diagonal, mean " << repair->mean_deviation << "); checks 4 (inside) and 5 (coverage) use it";
+         << " (";
+    double recorded = 0;  // the deviations add up (triangle inequality)
+    for (const auto* r : {repairs.mesh ? &*repairs.mesh : nullptr, repairs.features ? &*repairs.features : nullptr}) {
+      if (!r) continue;
+      if (recorded > 0) note << "; then ";
+      note << r->what << ", recorded Hausdorff deviation " << r->max_deviation << " = " << r->max_deviation_fraction
+           << " of the diagonal, mean " << r->mean_deviation;
+      recorded += r->max_deviation + 1e-300;
+    }
+    note << "; from " << args.mesh << "); checks 4 (inside) and 5 (coverage) use it";
     // Sanity check that it is the repaired version of MESH: the bounding
     // boxes differ by at most the recorded deviation (+ its error bound).
     const BoundingBox a = bounding_box(original), b = bounding_box(input);
-    const double slack = repair->max_deviation + 2e-5 * a.diagonal();
+    const double slack = recorded + 2e-5 * a.diagonal();
     if (!((a.min - b.min).cwiseAbs().maxCoeff() <= slack && (a.max - b.max).cwiseAbs().maxCoeff() <= slack))
       throw IoError(note.str() + "; but its bounding box differs from " + args.mesh +
                     "'s by more than the recorded deviation: is this the mesh that was decomposed?");

@@ -10,17 +10,20 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 #include <cstddef>
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 
 #include "subfab/core/parallel.h"
 #include "subfab/core/progress.h"
 #include "subfab/mesh/mesh.h"
+#include "subfab/repair/repair_mesh.h"
 
 namespace subfab::cli {
 
@@ -91,8 +94,39 @@ CommandSpec make_command(const std::string& name, int order, const std::string& 
 
 //! Reads the mesh at `path` in a "read" stage and passes it through
 //! require_closed_solid() (an inward mesh is flipped, with a warning).
+//! `hint`, when not empty, is appended to a refusal (e.g. how to repair).
 //! \throw IoError / InvalidMeshError (exit 2), with the reason.
-Mesh read_closed_solid(const std::string& path, Progress& progress);
+Mesh read_closed_solid(const std::string& path, Progress& progress, const std::string& hint = "");
+
+//! File name (in OUTDIR) of the solid `--repair` made of the input.
+inline constexpr const char* kMeshRepairedFile = "input_mesh_repaired.obj";
+
+//! The --repair and --repair-max-deviation options of decompose and unfold.
+struct RepairInputOptions {
+  bool repair = false;              // --repair: repair the input first (repair_mesh)
+  double max_deviation = MeshRepairOptions{}.max_deviation;  // --repair-max-deviation, x bbox diagonal
+};
+
+//! Adds --repair and --repair-max-deviation.
+void add_repair_input_options(CLI::App& sub, RepairInputOptions& options);
+
+//! The solid a command works on, and the repair that made it (if any).
+struct SolidInput {
+  Mesh mesh;
+  std::optional<MeshRepairReport> repair;  // set with --repair
+};
+
+//! Without --repair: read_closed_solid(), whose refusal names --repair as
+//! the fix. With it: reads any mesh, repairs it (repair_mesh, with a warning
+//! saying what changed and the deviation) and writes the result to
+//! `outdir`/kMeshRepairedFile (removing a stale one otherwise).
+//! \throw IoError / InvalidMeshError (exit 2).
+//! The "mesh_repair" record of an output: null, or when --repair changed the
+//! input {"mesh": kMeshRepairedFile} + mesh_repair_to_json().
+nlohmann::ordered_json mesh_repair_record(const SolidInput& input);
+
+SolidInput read_solid_input(const std::string& path, const RepairInputOptions& options,
+                            const std::filesystem::path& outdir, Progress& progress);
 
 //! Runs `write` (which writes the page `page`, e.g. OUTDIR/view.html); an
 //! IoError (three.js missing, a file that cannot be written) becomes a

@@ -55,8 +55,9 @@ void write_obj(const PolyMesh& mesh, const Mesh& tri, const std::vector<int>& tr
 }
 
 void write_json(const PolyMesh& mesh, const Unfolding& unfolding, const SheetLayout& layout,
-                const UnfoldSummary& summary, const std::filesystem::path& path) {
+                const UnfoldSummary& summary, const nlohmann::ordered_json& input, const std::filesystem::path& path) {
   nlohmann::ordered_json j;
+  if (!input.is_null()) j["input"] = input;
   j["facets"] = nlohmann::ordered_json::array();
   for (std::size_t f = 0; f < mesh.num_facets(); ++f) {
     nlohmann::ordered_json facet;
@@ -120,7 +121,7 @@ void export_unfolding(const PolyMesh& mesh, const Unfolding& unfolding, const Un
   write_obj(mesh, tri, tri_facet, outdir / "simplified.obj");
   write_svg(drawing, layout, outdir / "nets.svg");
   write_dxf(drawing, layout, outdir / "nets.dxf");
-  write_json(mesh, unfolding, layout, summary, outdir / "unfold.json");
+  write_json(mesh, unfolding, layout, summary, options.input, outdir / "unfold.json");
   write_preview(mesh, tri, tri_facet, drawing, layout, unfolding, options, outdir / "preview.png");
   if (options.progress)
     options.progress->info("wrote " + std::to_string(layout.num_sheets) + " sheet(s) of " +

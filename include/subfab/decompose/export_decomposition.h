@@ -13,7 +13,12 @@
 //!              (OUTDIR-relative, input coordinates), "vertices", "faces", "num_features", "num_creases",
 //!              "num_vertices", "num_rounds", "num_faces_removed", "num_faces_new", "max_deviation",
 //!              "mean_deviation" (model units), "max_deviation_fraction", "mean_deviation_fraction" (x bbox
-//!              diagonal), "hausdorff_error" (model units), "max_deviation_cap_fraction"}},
+//!              diagonal), "hausdorff_error" (model units), "max_deviation_cap_fraction"},
+//!              "mesh_repair": null, or after `decompose --repair` changed the input the record of
+//!              mesh_repair_to_json() plus "mesh": "input_mesh_repaired.obj" (OUTDIR-relative): the solid
+//!              made of the input file, which "vertices", "faces" and "repair" then describe,
+//!              "decomposed_mesh": the mesh the blocks decompose (the input path, "input_mesh_repaired.obj"
+//!              or "input_repaired.obj")},
 //!    "rotation": 3x3 (canonical = rotation x input),
 //!    "parameters": {"max_height_fraction", "max_height", "machine", "orient", "grid_factor"},
 //!    "blocks": [{"id", "mesh", "machine_mesh", "direction" (unit, input coordinates),
@@ -26,6 +31,7 @@
 #pragma once
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -71,6 +77,8 @@ std::vector<ExportedBlock> make_exported_blocks(const Mesh& input, const Decompo
 struct ExportInfo {
   std::string input_path;   // as given by the user
   DecomposeOptions options; // the options used (for "parameters")
+  nlohmann::ordered_json mesh_repair = nullptr;  // "input"."mesh_repair": null, or the record of the
+                                                 // repair (`decompose --repair`) with its "mesh"
 };
 
 //! The decomposition.json document (as text, 2-space indented, fields in the

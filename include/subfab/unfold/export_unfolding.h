@@ -23,6 +23,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <vector>
 
 #include "subfab/core/progress.h"
@@ -47,6 +48,8 @@ struct ExportUnfoldingOptions {
   int preview_width = 1600;  // pixels of preview.png
   int preview_height = 800;  // pixels
   Progress* progress = nullptr;
+  nlohmann::ordered_json input = nullptr;  // "input" of unfold.json (first key) when not null: the
+                                           // command's record of its input (path, repair)
 };
 
 //! Nets placed on sheets.

@@ -1,0 +1,180 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "subfab/repair/repair_mesh.h"
+
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "geometry/surface_deviation.h"
+#include "repair/repair_steps.h"
+#include "subfab/checks/analyze_mesh.h"
+#include "subfab/core/error.h"
+
+namespace subfab {
+
+namespace {
+
+void check_options(const MeshRepairOptions& o) {
+  if (!(o.max_deviation > 0 && std::isfinite(o.max_deviation)))
+    throw InvalidArgumentError("repair: --max-deviation must be a positive fraction of the bounding-box diagonal");
+  if (!(o.min_component_fraction >= 0 && o.min_component_fraction < 1))
+    throw InvalidArgumentError("repair: the minimum piece size must be a fraction in [0, 1)");
+  if (!(o.pinch_separation > 0 && o.pinch_separation < 0.01))
+    throw InvalidArgumentError("repair: the pinch separation must be a fraction in (0, 0.01)");
+  if (!(o.hausdorff_error > 0 && std::isfinite(o.hausdorff_error)))
+    throw InvalidArgumentError("repair: the Hausdorff error bound must be a positive fraction of the diagonal");
+  if (o.max_self_intersection_rounds < 1)
+    throw InvalidArgumentError("repair: at least one self-intersection round is needed");
+}
+
+//! The input faces the deviation is measured against: every face with three
+//! distinct corner positions (a face with a repeated corner has no surface
+//! of its own to measure).
+Mesh measurable(const Mesh& input) {
+  Mesh m;
+  m.vertices = input.vertices;
+  for (const Triangle& t : input.faces) {
+    const Vec3 &a = input.vertices[static_cast<std::size_t>(t[0])], &b = input.vertices[static_cast<std::size_t>(t[1])],
+               &c = input.vertices[static_cast<std::size_t>(t[2])];
+    if (a != b && b != c && a != c && (b - a).cross(c - a).squaredNorm() > 0) m.faces.push_back(t);
+  }
+  return m;
+}
+
+void add_step(MeshRepairReport& report, MeshRepairStep step, Progress* progress) {
+  if (progress && step.applied()) progress->info("repair " + step.name + ": " + step.message);
+  report.steps.push_back(std::move(step));
+}
+
+}  // namespace
+
+bool MeshRepairReport::changed() const {
+  for (const auto& s : steps)
+    if (s.applied()) return true;
+  return false;
+}
+
+std::string MeshRepairReport::applied_steps() const {
+  std::string out;
+  for (const auto& s : steps)
+    if (s.applied()) out += (out.empty() ? "" : ", ") + s.name;
+  return out.empty() ? "none" : out;
+}
+
+MeshRepairResult repair_mesh(const Mesh& input, const MeshRepairOptions& options) {
+  check_options(options);
+  const auto start = std::chrono::steady_clock::now();
+  Progress* progress = options.progress;
+  MeshRepairResult result;
+  MeshRepairReport& report = result.report;
+  report.input_vertices = input.num_vertices();
+  report.input_faces = input.num_faces();
+  report.max_deviation_cap = options.max_deviation;
+  if (input.faces.empty())
+    throw InvalidMeshError("the mesh has no faces: there is nothing to repair; give a triangle mesh that bounds a "
+                           "volume");
+
+  // 0. What is wrong, with the same exact checks as `subfab info`.
+  MeshReport problems;
+  {
+    StageScope stage(progress, "repair: check input");
+    problems = analyze_mesh(input);
+  }
+  for (const auto& check : problems.checks)
+    if (check.failed()) report.problems.push_back(check.name + ": " + check.message);
+  for (const char* fatal : {"finite_coordinates", "face_indices"}) {
+    const CheckResult* check = problems.find(fatal);
+    if (check && check->failed())
+      throw InvalidMeshError(check->message + " (repair cannot guess a vertex that is not there or has no position: "
+                             "export the file again from its source)");
+  }
+  report.bbox_diagonal = bounding_box(input).diagonal();
+  if (!(report.bbox_diagonal > 0))
+    throw InvalidMeshError("every vertex is at the same point: the mesh encloses no volume and cannot be repaired");
+  if (problems.all_passed()) {
+    result.mesh = input;
+    report.output_vertices = input.num_vertices();
+    report.output_faces = input.num_faces();
+    report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (progress) progress->info("repair: nothing to do, the mesh passes every check");
+    return result;
+  }
+
+  // 1-12. The steps (repair_mesh.h).
+  detail::RepairSurface surface;
+  {
+    StageScope stage(progress, "repair: soup");
+    detail::RepairSoup soup;
+    soup.points.reserve(input.num_vertices());
+    for (const Vec3& p : input.vertices) soup.points.emplace_back(p.x(), p.y(), p.z());
+    soup.triangles.reserve(input.num_faces());
+    for (const Triangle& t : input.faces)
+      soup.triangles.push_back({static_cast<std::size_t>(t[0]), static_cast<std::size_t>(t[1]),
+                                static_cast<std::size_t>(t[2])});
+    add_step(report, detail::merge_duplicate_vertices(soup), progress);
+    add_step(report, detail::remove_repeated_corner_faces(soup), progress);
+    add_step(report, detail::remove_duplicate_faces(soup), progress);
+    if (soup.triangles.empty())
+      throw InvalidMeshError("no face is left once faces with a repeated corner are removed: there is no surface to "
+                             "repair");
+    for (auto& step : detail::orient_soup(soup, surface)) add_step(report, std::move(step), progress);
+  }
+  {
+    StageScope stage(progress, "repair: close");
+    add_step(report, detail::stitch_borders(surface), progress);
+    add_step(report, detail::remove_small_components(surface, options.min_component_fraction), progress);
+    add_step(report, detail::remove_zero_area_faces(surface), progress);
+    add_step(report, detail::fill_holes(surface), progress);
+    add_step(report, detail::remove_flat_components(surface), progress);
+    add_step(report, detail::separate_pinches(surface, options.pinch_separation * report.bbox_diagonal), progress);
+  }
+  {
+    StageScope stage(progress, "repair: self-intersections");
+    add_step(report, detail::resolve_self_intersections(surface, options.max_self_intersection_rounds), progress);
+    add_step(report, detail::remove_zero_area_faces(surface), progress);
+    // The resolution can pinch vertices again (two parts of the hull meeting at a point).
+    auto again = detail::split_pinched_vertices(surface);
+    if (again.applied()) {
+      add_step(report, std::move(again), progress);
+      add_step(report, detail::separate_pinches(surface, options.pinch_separation * report.bbox_diagonal), progress);
+      add_step(report, detail::resolve_self_intersections(surface, options.max_self_intersection_rounds), progress);
+    }
+    add_step(report, detail::orient_outward(surface), progress);
+  }
+  result.mesh = detail::to_plain_mesh(surface);
+  report.output_vertices = result.mesh.num_vertices();
+  report.output_faces = result.mesh.num_faces();
+
+  // The result must pass every check `subfab info` runs.
+  {
+    StageScope stage(progress, "repair: check result");
+    const MeshReport after = analyze_mesh(result.mesh);
+    for (const auto& check : after.checks)
+      if (check.failed())
+        throw InvalidMeshError("the repair could not make a valid solid (steps applied: " + report.applied_steps() +
+                               "); the result still fails " + check.name + ": " + check.message);
+  }
+
+  // The deviation from the input, on the faces that differ.
+  {
+    StageScope stage(progress, "repair: deviation");
+    const Mesh reference = measurable(input);
+    report.hausdorff_error = options.hausdorff_error * report.bbox_diagonal;
+    const detail::SurfaceDeviation d = detail::surface_deviation(
+        reference, detail::faces_not_in(reference, result.mesh), result.mesh,
+        detail::faces_not_in(result.mesh, reference), report.hausdorff_error);
+    report.max_deviation = d.hausdorff;
+    report.mean_deviation = d.mean;
+  }
+  report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (report.max_deviation_fraction() > options.max_deviation) {
+    std::ostringstream msg;
+    msg << "the repair (" << report.applied_steps() << ") moves the surface by " << report.max_deviation << " ("
+        << report.max_deviation_fraction() << " of the bounding-box diagonal), more than the cap "
+        << options.max_deviation << "; raise --max-deviation if that is acceptable, or fix the mesh in a mesh editor";
+    throw InvalidMeshError(msg.str());
+  }
+  return result;
+}
+
+}  // namespace subfab
