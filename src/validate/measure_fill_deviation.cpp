@@ -46,8 +46,11 @@ double hausdorff(const detail::DistanceMesh& from, const detail::DistanceMesh& t
   return PMP::bounded_error_Hausdorff_distance<CGAL::Sequential_tag>(from, to, error, no_match, no_match);
 }
 
-//! a := a ∪ b (exact); false when CGAL cannot (a non-manifold result).
+//! a := a ∪ b (exact); false when CGAL cannot (a non-manifold result), or
+//! when either operand touches itself (two vertices at one exact point):
+//! the corefinement's precondition, which it does not check and can loop on.
 bool unite(ExactMesh& a, ExactMesh& b) {
+  if (detail::has_coincident_vertices(a) || detail::has_coincident_vertices(b)) return false;
   ExactMesh out;
   if (!PMP::corefine_and_compute_union(a, b, out)) return false;
   a = std::move(out);
