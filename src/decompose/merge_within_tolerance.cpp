@@ -5,8 +5,6 @@
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Polygon_mesh_processing/connected_components.h>
-#include <CGAL/Polygon_mesh_processing/corefinement.h>
 
 #include <algorithm>
 #include <chrono>
@@ -20,8 +18,7 @@
 #include <tuple>
 #include <utility>
 
-#include "geometry/deterministic_arena.h"
-#include "geometry/exact_mesh.h"
+#include "decompose/block_pairs_detail.h"
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
 #include "subfab/validate/measure_fill_deviation.h"
@@ -31,13 +28,6 @@
 
 namespace subfab {
 namespace {
-
-namespace PMP = CGAL::Polygon_mesh_processing;
-using detail::ExactMesh;
-
-bool boxes_touch(const BoundingBox& a, const BoundingBox& b) {
-  return (a.min.array() <= b.max.array()).all() && (b.min.array() <= a.max.array()).all();
-}
 
 bool interiors_meet(const BoundingBox& a, const BoundingBox& b) {
   return (a.min.array() < b.max.array()).all() && (b.min.array() < a.max.array()).all();
@@ -49,39 +39,14 @@ BoundingBox widened(BoundingBox box, double margin) {
   return box;
 }
 
-bool within_limits(const BoundingBox& box, Axis axis, const ToleranceMergeOptions& o) {
-  const Vec3 size = box.size();
-  const int k = axis_dimension(axis);
-  const double h = size[k];
-  const double a = size[(k + 1) % 3], b = size[(k + 2) % 3];
-  if (h > o.max_height || h > o.machine_size.z()) return false;
-  return (a <= o.machine_size.x() && b <= o.machine_size.y()) || (a <= o.machine_size.y() && b <= o.machine_size.x());
-}
-
 //! The union of two touching blocks when it is one closed 2-manifold piece
 //! that rounds to doubles without degenerate or flipped faces (exact
 //! corefinement in a deterministic arena).
 std::optional<Mesh> exact_union(const Mesh& a, const Mesh& b) {
-  if (detail::count_degenerate_faces(a) > 0 || detail::count_degenerate_faces(b) > 0) return std::nullopt;
-  detail::warm_up_exact_booleans();
-  std::optional<Mesh> out;
-  detail::DeterministicArena arena;
-  try {
-    ExactMesh ea = detail::to_exact(a), eb = detail::to_exact(b), u;
-    const auto np = CGAL::parameters::throw_on_self_intersection(true);
-    if (PMP::corefine_and_compute_union(ea, eb, u, np, np) && u.number_of_faces() > 0) {
-      auto fcc = u.add_property_map<ExactMesh::Face_index, std::size_t>("f:cc", 0).first;
-      if (PMP::connected_components(u, fcc) == 1) {
-        detail::SuspendArena heap;
-        detail::RoundingReport rounding;
-        Mesh m = detail::to_double(u, &rounding);
-        if (rounding.num_degenerate_faces + rounding.num_flipped_faces == 0) out = std::move(m);
-      }
-    }
-  } catch (const std::exception&) {
-    // An exact boolean that fails means: do not merge this pair.
-  }
-  return out;
+  detail::RoundingReport rounding;
+  std::optional<Mesh> u = detail::exact_block_union(a, b, nullptr, rounding);
+  if (u && rounding.num_degenerate_faces + rounding.num_flipped_faces > 0) return std::nullopt;
+  return u;
 }
 
 //! Quick screen of a direction for the union `u` (a heuristic: it only
@@ -180,7 +145,7 @@ std::optional<Candidate> evaluate(std::size_t i, std::size_t j, const State& s, 
   const FillScreen screen(both);
   std::vector<Axis> axes;
   for (Axis axis : order)
-    if (within_limits(ubox, axis, o) && screen.passes(axis_direction(axis), o.screen_factor * o.tolerance))
+    if (detail::within_limits(ubox, axis, o.max_height, o.machine_size) && screen.passes(axis_direction(axis), o.screen_factor * o.tolerance))
       axes.push_back(axis);
   if (axes.empty()) return std::nullopt;
   double t0 = now_s();
@@ -252,17 +217,13 @@ ToleranceMergeResult merge_within_tolerance(const Mesh& solid, std::vector<Block
   std::map<std::pair<std::size_t, std::size_t>, bool> rejected;
   StageScope stage(options.progress, "tolerance merge");
   for (int round = 0; round < options.max_rounds; ++round) {
-    std::vector<BoundingBox> boxes(blocks.size());
-    std::vector<double> volumes(blocks.size());
-    for (std::size_t i = 0; i < blocks.size(); ++i) {
-      boxes[i] = bounding_box(blocks[i].mesh);
-      volumes[i] = signed_volume(blocks[i].mesh);
-    }
+    const std::vector<BoundingBox> boxes = detail::block_boxes(blocks);
+    const std::vector<double> volumes = detail::block_volumes(blocks);
     // pairs, smallest smaller block first
     std::vector<std::tuple<double, std::size_t, std::size_t>> order;
     for (std::size_t i = 0; i < blocks.size(); ++i)
       for (std::size_t j = i + 1; j < blocks.size(); ++j)
-        if (boxes_touch(boxes[i], boxes[j]) && !rejected.count({ids[i], ids[j]}) &&
+        if (detail::boxes_touch(boxes[i], boxes[j]) && !rejected.count({ids[i], ids[j]}) &&
             blocks[i].mesh.num_faces() + blocks[j].mesh.num_faces() <= options.max_pair_faces)
           order.emplace_back(std::min(volumes[i], volumes[j]), i, j);
     if (order.empty()) break;
@@ -289,7 +250,7 @@ ToleranceMergeResult merge_within_tolerance(const Mesh& solid, std::vector<Block
       }
       if (used[i] || used[j]) continue;  // evaluated again next round
       const BoundingBox reach = widened(bounding_box(found[p]->mesh), margin);
-      if (std::any_of(changed.begin(), changed.end(), [&](const BoundingBox& c) { return boxes_touch(c, reach); }))
+      if (std::any_of(changed.begin(), changed.end(), [&](const BoundingBox& c) { return detail::boxes_touch(c, reach); }))
         continue;  // near a block changed this round: evaluated again next round
       used[i] = used[j] = 1;
       changed.push_back(reach);
