@@ -1,11 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "subfab/decompose/merge_within_tolerance.h"
 
-#include <CGAL/AABB_traits.h>
-#include <CGAL/AABB_tree.h>
-#include <CGAL/AABB_triangle_primitive.h>
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -19,6 +14,7 @@
 #include <utility>
 
 #include "decompose/block_pairs_detail.h"
+#include "geometry/triangle_tree.h"
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
 #include "subfab/validate/measure_fill_deviation.h"
@@ -57,14 +53,7 @@ std::optional<Mesh> exact_union(const Mesh& a, const Mesh& b) {
 //! input surface they cover far from any surface of the result.
 class FillScreen {
  public:
-  explicit FillScreen(const Mesh& u) : mesh_(u) {
-    triangles_.reserve(u.num_faces());
-    for (const Triangle& t : u.faces)
-      triangles_.emplace_back(point(u.vertices[static_cast<std::size_t>(t[0])]),
-                              point(u.vertices[static_cast<std::size_t>(t[1])]),
-                              point(u.vertices[static_cast<std::size_t>(t[2])]));
-    tree_.insert(triangles_.begin(), triangles_.end());
-  }
+  explicit FillScreen(const Mesh& u) : mesh_(u), surface_(u) {}
 
   bool passes(const Vec3& d, double limit) const {
     double base = std::numeric_limits<double>::infinity();
@@ -79,9 +68,9 @@ class FillScreen {
       double free = centroid.dot(d) - base;
       if (free * c <= limit) continue;
       const Epick::Ray_3 ray(point(centroid), Epick::Direction_3(-d.x(), -d.y(), -d.z()));
-      const auto self = triangles_.begin() + static_cast<std::ptrdiff_t>(f);
-      const auto skip = [self](std::vector<Tri>::const_iterator id) { return id == self; };
-      if (const auto hit = tree_.first_intersection(ray, skip)) {
+      const auto self = surface_.triangles().begin() + static_cast<std::ptrdiff_t>(f);
+      const auto skip = [self](detail::TriangleTree::Iterator id) { return id == self; };
+      if (const auto hit = surface_.tree().first_intersection(ray, skip)) {
         if (const Epick::Point_3* p = boost::get<Epick::Point_3>(&hit->first))
           free = std::min(free, std::sqrt(CGAL::squared_distance(*p, point(centroid))));
         else
@@ -93,13 +82,10 @@ class FillScreen {
   }
 
  private:
-  using Epick = CGAL::Exact_predicates_inexact_constructions_kernel;
-  using Tri = Epick::Triangle_3;
-  using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Epick, CGAL::AABB_triangle_primitive<Epick, std::vector<Tri>::const_iterator>>>;
-  static Epick::Point_3 point(const Vec3& p) { return Epick::Point_3(p.x(), p.y(), p.z()); }
+  using Epick = detail::TriangleTree::Kernel;
+  static Epick::Point_3 point(const Vec3& p) { return detail::TriangleTree::point(p); }
   const Mesh& mesh_;
-  std::vector<Tri> triangles_;
-  Tree tree_;
+  detail::TriangleTree surface_;
 };
 
 //! An accepted merge.
