@@ -2,9 +2,6 @@
 #include "subfab/decompose/merge_within_tolerance.h"
 
 #include <algorithm>
-#include <chrono>
-#include <cstdio>
-#include <cstdlib>
 #include <atomic>
 #include <cmath>
 #include <map>
@@ -104,9 +101,6 @@ struct State {
   const std::vector<double>& volumes;
 };
 
-double now_s() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
-const bool kDebug = std::getenv("SUBFAB_DEBUG_TOLERANCE") != nullptr;
-
 std::optional<Candidate> evaluate(std::size_t i, std::size_t j, const State& s, const FillDeviationMeter& meter,
                                   const ToleranceMergeOptions& o, std::size_t& tried) {
   // Cheap tests first, on the two blocks (the union's box is their boxes'
@@ -134,9 +128,7 @@ std::optional<Candidate> evaluate(std::size_t i, std::size_t j, const State& s, 
     if (detail::within_limits(ubox, axis, o.max_height, o.machine_size) && screen.passes(axis_direction(axis), o.screen_factor * o.tolerance))
       axes.push_back(axis);
   if (axes.empty()) return std::nullopt;
-  double t0 = now_s();
   const std::optional<Mesh> u = exact_union(s.blocks[i].mesh, s.blocks[j].mesh);
-  if (kDebug) std::fprintf(stderr, "pair %zu %zu: %zu axes, union %.3f s %s\n", i, j, axes.size(), now_s() - t0, u ? "ok" : "failed");
   if (!u) return std::nullopt;
   std::vector<const Mesh*> others;
   for (std::size_t k = 0; k < s.blocks.size(); ++k)
@@ -145,25 +137,18 @@ std::optional<Candidate> evaluate(std::size_t i, std::size_t j, const State& s, 
   for (Axis axis : axes) {
     const Vec3 d = axis_direction(axis);
     MilledShape milled;
-    t0 = now_s();
     try {
       milled = milled_shape(*u, d);
     } catch (const std::exception&) {
       continue;
     }
-    if (kDebug) std::fprintf(stderr, "  axis %d: milled %.3f s, %zu faces\n", int(axis), now_s() - t0, milled.mesh.num_faces());
     ++tried;
     if (milled.is_block) return Candidate{*u, axis, s.filled[i] || s.filled[j], 0.0};
     const Mesh& m = milled.mesh;
     if (!check_closed_solid(m).ok() || !is_height_field(m, d)) continue;
     // The deviation first (it rejects most), then collisions (exact booleans).
-    t0 = now_s();
     const FillDeviation dev = meter.measure(m, others, {.reach = o.tolerance, .error = error, .max_faces = o.max_region_faces});
-    if (kDebug)
-      std::fprintf(stderr, "  axis %d: meter %.3f s, to %.3g from %.3g (T %.3g) %s\n", int(axis), now_s() - t0,
-                   dev.to_input, dev.from_input, o.tolerance, dev.failure.c_str());
     if (!dev.failure.empty() || dev.bound() > o.tolerance) continue;
-    t0 = now_s();
     const BoundingBox mbox = bounding_box(m);
     const double volume = signed_volume(m);
     bool collides = false;
@@ -179,7 +164,6 @@ std::optional<Candidate> evaluate(std::size_t i, std::size_t j, const State& s, 
         collides = true;
       }
     }
-    if (kDebug) std::fprintf(stderr, "  axis %d: collision %.3f s %d\n", int(axis), now_s() - t0, int(collides));
     if (collides) continue;
     return Candidate{m, axis, true, dev.bound()};
   }
