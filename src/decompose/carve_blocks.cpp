@@ -32,9 +32,20 @@ CarveResult carve_blocks(const Mesh& solid, const std::vector<HeightBox>& ordere
   Progress* progress = options.progress;
   if (!(options.contact_move > 0) || options.max_contact_rounds < 0)
     throw InvalidArgumentError("carve_blocks: contact_move must be positive and max_contact_rounds >= 0");
-  const detail::SolidIndex index(solid, overhang_sine(options.max_overhang_deg));
+  const detail::SolidIndex index(solid, overhang_sine(options.max_overhang_deg), options.allowed_overhangs);
   HeightFieldOptions height_field;
   height_field.normal_tolerance = height_field_normal_tolerance(options.max_overhang_deg);
+  if (options.allowed_overhangs) {  // the allowed faces may lean as far as they do (their undercuts are measured later)
+    if (options.allowed_overhangs->size() != solid.num_faces())
+      throw InvalidArgumentError("carve_blocks: one overhang allowance per face expected");
+    for (std::size_t f = 0; f < solid.num_faces(); ++f) {
+      const std::uint8_t bits = (*options.allowed_overhangs)[f];
+      if (!bits) continue;
+      const Vec3 n = face_unit_normal(solid, f);
+      for (int k = 0; k < 3; ++k)
+        if (bits & (1u << k)) height_field.normal_tolerance = std::max(height_field.normal_tolerance, std::abs(n[k]) + 1e-3);
+    }
+  }
   std::vector<HeightBox> boxes = ordered_boxes;
   std::vector<BoxPieces> per_box(boxes.size());
   std::atomic<std::size_t> done{0};

@@ -206,7 +206,7 @@ std::array<HeightField, 6> compute_fields(const Mesh& mesh, const GridGeometry& 
   const int nx = grid.num_points[0], ny = grid.num_points[1], nz = grid.num_points[2];
 
   const std::vector<std::uint16_t> cell_flags =
-      detail::mark_triangle_cells(mesh, grid, overhang_sine(options.max_overhang_deg));
+      detail::mark_triangle_cells(mesh, grid, overhang_sine(options.max_overhang_deg), options.allowed_overhangs);
   std::vector<std::uint8_t> deep;
   if (std::isfinite(options.max_height)) deep = mark_too_deep(mesh, grid, options.max_height);
 

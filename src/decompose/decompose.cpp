@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <numeric>
 #include <cmath>
 #include <sstream>
@@ -21,6 +22,8 @@
 #include "subfab/decompose/grow_boxes.h"
 #include "subfab/decompose/merge_blocks.h"
 #include "subfab/decompose/merge_within_tolerance.h"
+#include "subfab/decompose/mill_within_tolerance.h"
+#include "subfab/decompose/tolerance_allowances.h"
 #include "subfab/decompose/orient_mesh.h"
 #include "subfab/decompose/resolve_overlaps.h"
 #include "subfab/decompose/select_cover.h"
@@ -49,6 +52,7 @@ void check_options(const DecomposeOptions& o) {
     throw InvalidArgumentError("--tolerance must be a fraction of the bounding-box diagonal >= 0");
   if (std::isnan(o.tolerance_abs) || o.tolerance_abs < 0)
     throw InvalidArgumentError("--tolerance-abs must be a length in model units >= 0");
+  if (o.tolerance_rounds < 1) throw InvalidArgumentError("tolerance_rounds must be at least 1");
   overhang_sine(o.max_overhang_deg);  // throws on a value outside [0, 45] degrees
 }
 
@@ -100,6 +104,165 @@ Mesh repaired_in_input_frame(const Mesh& input, const Mesh& canonical, const Mes
     out.vertices.push_back(it != input_vertex.end() ? input.vertices[it->second] : detail::rotate_accurately(back, c));
   }
   return out;
+}
+
+//! Stages 2 to 6 of decompose() on `solid` (canonical frame): fields,
+//! grow, cover, snap, resolve and carve, under the overhang allowances
+//! `allowed` (per face of `solid`; nullptr: none). Sets result.canonical to
+//! the refined solid and adds the stages' statistics and times to `result`.
+std::vector<Block> carve_stages(const Mesh& solid, const std::vector<std::uint8_t>* allowed, const Mesh& input,
+                                const DecomposeOptions& options, DecomposeResult& result) {
+  Progress* progress = options.progress;
+  const double overhang = options.max_overhang_deg;
+  const Vec3 machine = options.machine ? *options.machine : Vec3::Constant(std::numeric_limits<double>::infinity());
+  // 2. fields (4.3.2)
+  std::array<HeightField, 6> fields;
+  {
+    StageScope stage(progress, "field");
+    const auto t = Clock::now();
+    FieldOptions o;
+    o.grid_factor = options.grid_factor;
+    if (result.repaired_input)  // the grid keeps the input's spacing (the repair adds small faces)
+      o.grid_factor *= average_edge_length(input) / average_edge_length(solid);
+    o.max_height = result.max_height;
+    o.max_overhang_deg = overhang;
+    o.progress = progress;
+    o.allowed_overhangs = allowed;
+    fields = compute_fields(solid, o);
+    result.timings.field += seconds_since(t);
+  }
+
+  // 3. grow (4.3.2, Appendix B; local refinement 4.3.5)
+  GrowResult grown;
+  {
+    StageScope stage(progress, "grow");
+    const auto t = Clock::now();
+    GrowOptions o;
+    o.grid_factor = options.grid_factor;
+    o.max_height = result.max_height;
+    o.machine_size = machine;
+    o.fields = &fields;
+    o.allowed_overhangs = allowed;
+    o.max_overhang_deg = overhang;
+    o.progress = progress;
+    grown = grow_boxes(solid, o);
+    result.num_grown_boxes = grown.boxes.size();
+    result.num_refined_faces = grown.num_refined_faces;
+    result.timings.grow += seconds_since(t);
+  }
+  result.canonical = grown.mesh;
+  // The allowances of the refined mesh: a face inherits its parent's.
+  std::vector<std::uint8_t> grown_allowed;
+  if (allowed)
+    for (int parent : grown.parent_face) grown_allowed.push_back((*allowed)[static_cast<std::size_t>(parent)]);
+  const std::vector<std::uint8_t>* refined_allowed = allowed ? &grown_allowed : nullptr;
+
+  // 4. minimal cover (4.3.2, ILP with CBC), 5. snap and shrink (4.3.4) and
+  //    resolve overlaps (4.3.3: conflict graph, cycle splits, carve order),
+  //    for two covers: one minimising blocks (each box costs its connected
+  //    surface pieces, box_pieces.h) and one minimising boxes (the thesis).
+  //    Covers of the same size can need very different numbers of cycle
+  //    splits, so the carve order whose boxes add up to fewer pieces is kept
+  //    (ties: the first). Snap and resolve are timed as "resolve".
+  std::vector<HeightBox> ordered;
+  {
+    const detail::SolidIndex piece_index(result.canonical, overhang_sine(overhang), refined_allowed);
+    const std::vector<int> neighbours = detail::face_neighbours(result.canonical);
+    const bool one_piece_each = std::all_of(grown.num_pieces.begin(), grown.num_pieces.end(), [](int p) { return p == 1; });
+    std::size_t best_pieces = std::numeric_limits<std::size_t>::max();
+    for (const bool by_pieces : {true, false}) {
+      if (!by_pieces && one_piece_each) break;  // the same cover again
+      std::vector<HeightBox> selected;
+      CoverResult cover;
+      {
+        StageScope stage(progress, "cover");
+        const auto t = Clock::now();
+        CoverOptions o;
+        o.time_limit_s = options.cover_time_limit_s;
+        o.progress = progress;
+        o.preference.reserve(grown.boxes.size());
+        for (const HeightBox& b : grown.boxes) o.preference.push_back(b.box.volume());
+        if (by_pieces) o.cost = grown.num_pieces;
+        cover = select_cover(grown.covered, grown.mesh.num_faces(), o);
+        for (int b : cover.selected) selected.push_back(grown.boxes[static_cast<std::size_t>(b)]);
+        result.timings.cover += seconds_since(t);
+      }
+      const std::size_t num_selected = selected.size();
+      {
+        StageScope stage(progress, "snap");
+        const auto t = Clock::now();
+        SnapShrinkOptions o;
+        o.snap_distance = average_edge_length(input) * options.grid_factor;
+        o.max_height = result.max_height;
+        o.machine_size = machine;
+        o.max_overhang_deg = overhang;
+        o.allowed_overhangs = refined_allowed;
+        o.progress = progress;
+        selected = snap_and_shrink(result.canonical, std::move(selected), o).boxes;
+        result.timings.resolve += seconds_since(t);
+      }
+      StageScope stage(progress, "resolve");
+      const auto t = Clock::now();
+      ResolveOptions o;
+      o.max_overhang_deg = overhang;
+      o.allowed_overhangs = refined_allowed;
+      o.progress = progress;
+      ResolveResult r = resolve_overlaps(result.canonical, std::move(selected), o);
+      std::vector<std::size_t> pieces(r.ordered.size());
+      parallel_for(0, r.ordered.size(), [&](std::size_t i) {
+        pieces[i] = std::max<std::size_t>(1, detail::surface_pieces(piece_index, neighbours, r.ordered[i]).size());
+      });
+      const std::size_t total = std::accumulate(pieces.begin(), pieces.end(), std::size_t{0});
+      if (progress)
+        progress->info(std::string("cover by ") + (by_pieces ? "pieces" : "boxes") + ": " +
+                       std::to_string(num_selected) + " boxes, " + std::to_string(r.ordered.size()) +
+                       " in carve order, " + std::to_string(total) + " pieces");
+      if (total < best_pieces) {
+        best_pieces = total;
+        ordered = std::move(r.ordered);
+        result.num_selected_boxes = num_selected;
+        result.cover_optimal = cover.optimal;
+        result.num_ordered_boxes = ordered.size();
+        result.num_cycle_splits = r.num_splits;
+      }
+      result.timings.resolve += seconds_since(t);
+    }
+  }
+
+  // 6. carve (exact booleans)
+  StageScope stage(progress, "carve");
+  const auto t = Clock::now();
+  CarveOptions co;
+  co.max_height = result.max_height;
+  co.machine_size = machine;
+  co.max_overhang_deg = overhang;
+  co.allowed_overhangs = refined_allowed;
+  co.progress = progress;
+  CarveResult carved = carve_blocks(result.canonical, ordered, co);
+  result.timings.carve += seconds_since(t);
+  return std::move(carved.blocks);
+}
+
+//! Takes the allowances back for the axis of every failed block, on the
+//! faces whose bounding box meets the block's (a block fails where the
+//! material left under its allowed faces is too deep or collides).
+std::size_t revoke_allowances(const Mesh& solid, const MillToleranceResult& milled, std::vector<std::uint8_t>& allowed) {
+  std::size_t revoked = 0;
+  for (std::size_t i = 0; i < milled.blocks.size(); ++i) {
+    if (milled.failures[i].empty()) continue;
+    const BoundingBox box = bounding_box(milled.blocks[i].mesh);
+    const auto bit = static_cast<std::uint8_t>(1u << axis_dimension(milled.blocks[i].axis));
+    for (std::size_t f = 0; f < solid.num_faces(); ++f) {
+      if (!(allowed[f] & bit)) continue;
+      BoundingBox fb;
+      for (int v : solid.faces[f]) fb.extend(solid.vertices[static_cast<std::size_t>(v)]);
+      if ((fb.min.array() <= box.max.array()).all() && (box.min.array() <= fb.max.array()).all()) {
+        allowed[f] = static_cast<std::uint8_t>(allowed[f] & ~bit);
+        ++revoked;
+      }
+    }
+  }
+  return revoked;
 }
 
 }  // namespace
@@ -166,152 +329,102 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
     result.timings.repair = seconds_since(tr);
   }
 
-  // 2. fields (4.3.2)
-  std::array<HeightField, 6> fields;
-  {
-    StageScope stage(progress, "field");
-    const auto t = Clock::now();
-    FieldOptions o;
-    o.grid_factor = options.grid_factor;
-    if (result.repaired_input)  // the grid keeps the input's spacing (the repair adds small faces)
-      o.grid_factor *= average_edge_length(input) / average_edge_length(result.canonical);
-    o.max_height = result.max_height;
-    o.max_overhang_deg = overhang;
-    o.progress = progress;
-    fields = compute_fields(result.canonical, o);
-    result.timings.field = seconds_since(t);
-  }
-
-  // 3. grow (4.3.2, Appendix B; local refinement 4.3.5)
-  GrowResult grown;
-  {
-    StageScope stage(progress, "grow");
-    const auto t = Clock::now();
-    GrowOptions o;
-    o.grid_factor = options.grid_factor;
-    o.max_height = result.max_height;
-    o.machine_size = machine;
-    o.fields = &fields;
-    o.max_overhang_deg = overhang;
-    o.progress = progress;
-    grown = grow_boxes(result.canonical, o);
-    result.num_grown_boxes = grown.boxes.size();
-    result.num_refined_faces = grown.num_refined_faces;
-    result.timings.grow = seconds_since(t);
-  }
-  result.canonical = grown.mesh;
-
-  // 4. minimal cover (4.3.2, ILP with CBC), 5. snap and shrink (4.3.4) and
-  //    resolve overlaps (4.3.3: conflict graph, cycle splits, carve order),
-  //    for two covers: one minimising blocks (each box costs its connected
-  //    surface pieces, box_pieces.h) and one minimising boxes (the thesis).
-  //    Covers of the same size can need very different numbers of cycle
-  //    splits, so the carve order whose boxes add up to fewer pieces is kept
-  //    (ties: the first). Snap and resolve are timed as "resolve".
-  std::vector<HeightBox> ordered;
-  {
-    const detail::SolidIndex piece_index(result.canonical, overhang_sine(overhang));
-    const std::vector<int> neighbours = detail::face_neighbours(result.canonical);
-    const bool one_piece_each = std::all_of(grown.num_pieces.begin(), grown.num_pieces.end(), [](int p) { return p == 1; });
-    std::size_t best_pieces = std::numeric_limits<std::size_t>::max();
-    for (const bool by_pieces : {true, false}) {
-      if (!by_pieces && one_piece_each) break;  // the same cover again
-      std::vector<HeightBox> selected;
-      CoverResult cover;
-      {
-        StageScope stage(progress, "cover");
-        const auto t = Clock::now();
-        CoverOptions o;
-        o.time_limit_s = options.cover_time_limit_s;
-        o.progress = progress;
-        o.preference.reserve(grown.boxes.size());
-        for (const HeightBox& b : grown.boxes) o.preference.push_back(b.box.volume());
-        if (by_pieces) o.cost = grown.num_pieces;
-        cover = select_cover(grown.covered, grown.mesh.num_faces(), o);
-        for (int b : cover.selected) selected.push_back(grown.boxes[static_cast<std::size_t>(b)]);
-        result.timings.cover += seconds_since(t);
+  // 2.-6. fields, grow, cover, snap, resolve, carve. Within a tolerance
+  //    (issue 17): under the allowances of the faces whose undercut is
+  //    within it, then every block replaced by its milled shape and
+  //    measured; where one fails, its allowances are taken back and the
+  //    stages run again (the last round without any: the exact path).
+  const Mesh solid = result.canonical;  // before grow's local refinement
+  std::vector<Block> blocks;
+  std::vector<char> filled;
+  if (result.tolerance > 0) {
+    auto tt = Clock::now();
+    ToleranceAllowanceOptions ao;
+    ao.tolerance = result.tolerance;
+    ao.max_height = result.max_height;
+    ao.progress = progress;
+    std::vector<std::uint8_t> allowed = tolerance_allowances(solid, ao);
+    result.num_allowed_faces = count_allowed_faces(allowed);
+    result.timings.tolerance += seconds_since(tt);
+    for (int round = 0;; ++round) {
+      const std::size_t num_allowed = count_allowed_faces(allowed);
+      blocks = carve_stages(solid, num_allowed > 0 ? &allowed : nullptr, input, options, result);
+      if (num_allowed == 0) break;
+      ++result.num_tolerance_rounds;
+      StageScope stage(progress, "mill");
+      tt = Clock::now();
+      MillToleranceOptions mo;
+      mo.tolerance = result.tolerance;
+      mo.progress = progress;
+      MillToleranceResult milled = mill_within_tolerance(solid, std::move(blocks), mo);
+      result.timings.tolerance += seconds_since(tt);
+      if (milled.num_failed() == 0) {
+        blocks = std::move(milled.blocks);
+        filled = std::move(milled.filled);
+        result.deviation_bound = milled.max_deviation;
+        break;
       }
-      const std::size_t num_selected = selected.size();
-      {
-        StageScope stage(progress, "snap");
-        const auto t = Clock::now();
-        SnapShrinkOptions o;
-        o.snap_distance = average_edge_length(input) * options.grid_factor;
-        o.max_height = result.max_height;
-        o.machine_size = machine;
-        o.max_overhang_deg = overhang;
-        o.progress = progress;
-        selected = snap_and_shrink(result.canonical, std::move(selected), o).boxes;
-        result.timings.resolve += seconds_since(t);
+      std::size_t revoked = 0;
+      if (round + 1 >= options.tolerance_rounds) {
+        revoked = num_allowed;
+        allowed.assign(allowed.size(), 0);
+      } else {
+        revoked = revoke_allowances(solid, milled, allowed);
       }
-      StageScope stage(progress, "resolve");
-      const auto t = Clock::now();
-      ResolveOptions o;
-      o.max_overhang_deg = overhang;
-      o.progress = progress;
-      ResolveResult r = resolve_overlaps(result.canonical, std::move(selected), o);
-      std::vector<std::size_t> pieces(r.ordered.size());
-      parallel_for(0, r.ordered.size(), [&](std::size_t i) {
-        pieces[i] = std::max<std::size_t>(1, detail::surface_pieces(piece_index, neighbours, r.ordered[i]).size());
-      });
-      const std::size_t total = std::accumulate(pieces.begin(), pieces.end(), std::size_t{0});
-      if (progress)
-        progress->info(std::string("cover by ") + (by_pieces ? "pieces" : "boxes") + ": " +
-                       std::to_string(num_selected) + " boxes, " + std::to_string(r.ordered.size()) +
-                       " in carve order, " + std::to_string(total) + " pieces");
-      if (total < best_pieces) {
-        best_pieces = total;
-        ordered = std::move(r.ordered);
-        result.num_selected_boxes = num_selected;
-        result.cover_optimal = cover.optimal;
-        result.num_ordered_boxes = ordered.size();
-        result.num_cycle_splits = r.num_splits;
+      if (progress) {
+        std::string first;
+        for (std::size_t i = 0; i < milled.failures.size() && first.empty(); ++i)
+          if (!milled.failures[i].empty()) first = "block " + std::to_string(i + 1) + ": " + milled.failures[i];
+        progress->info(std::to_string(milled.num_failed()) + " block(s) beyond the tolerance (" + first + "); " +
+                       std::to_string(revoked) + " allowances taken back, decomposing again");
       }
-      result.timings.resolve += seconds_since(t);
     }
+  } else {
+    blocks = carve_stages(solid, nullptr, input, options, result);
   }
 
-  // 6. carve (exact booleans) and 7. merge (4.3.4 post-processing)
+  // 7. merge (4.3.4 post-processing)
   {
-    StageScope stage(progress, "carve");
+    StageScope stage(progress, "merge");
     const auto t = Clock::now();
-    CarveOptions co;
-    co.max_height = result.max_height;
-    co.machine_size = machine;
-    co.max_overhang_deg = overhang;
-    co.progress = progress;
-    CarveResult carved = carve_blocks(result.canonical, ordered, co);
     if (options.merge) {
       MergeOptions mo;
       mo.max_height = result.max_height;
       mo.machine_size = machine;
       mo.max_overhang_deg = overhang;
       mo.progress = progress;
-      MergeResult merged = merge_blocks(std::move(carved.blocks), mo);
+      MergeResult merged = merge_blocks(std::move(blocks), mo);
       result.blocks = std::move(merged.blocks);
       result.num_merges = merged.num_merges;
+      if (!filled.empty()) {  // a union sticks out when one of its parts does
+        std::vector<char> merged_filled(result.blocks.size(), 0);
+        for (std::size_t b = 0; b < merged.parts.size(); ++b)
+          for (std::size_t part : merged.parts[b]) merged_filled[b] = static_cast<char>(merged_filled[b] | filled[part]);
+        filled = std::move(merged_filled);
+      }
     } else {
-      result.blocks = std::move(carved.blocks);
+      result.blocks = std::move(blocks);
     }
-    // 8. fewer blocks within the tolerance (issue 17): merges into milled shapes
-    if (result.tolerance > 0) {
-      const auto tt = Clock::now();
-      ToleranceMergeOptions to;
-      to.tolerance = result.tolerance;
-      to.max_height = result.max_height;
-      to.machine_size = machine;
-      to.progress = progress;
-      ToleranceMergeResult merged = merge_within_tolerance(result.canonical, std::move(result.blocks), to);
-      result.blocks = std::move(merged.blocks);
-      result.filled = std::move(merged.filled);
-      result.deviation_bound = merged.max_deviation;
-      result.num_tolerance_merges = merged.num_merges;
-      result.timings.tolerance = seconds_since(tt);
-      if (progress)
-        progress->info(std::to_string(merged.num_merges) + " merges within the tolerance (" +
-                       std::to_string(merged.num_candidates) + " milled shapes evaluated)");
-    }
-    result.timings.carve = seconds_since(t);
+    result.timings.carve += seconds_since(t);
+  }
+  // 8. fewer blocks within the tolerance (issue 17): merges into milled shapes
+  if (result.tolerance > 0) {
+    const auto tt = Clock::now();
+    ToleranceMergeOptions to;
+    to.tolerance = result.tolerance;
+    to.max_height = result.max_height;
+    to.machine_size = machine;
+    to.progress = progress;
+    if (!filled.empty()) to.filled = &filled;
+    ToleranceMergeResult merged = merge_within_tolerance(solid, std::move(result.blocks), to);
+    result.blocks = std::move(merged.blocks);
+    result.filled = std::move(merged.filled);
+    result.deviation_bound = std::max(result.deviation_bound, merged.max_deviation);
+    result.num_tolerance_merges = merged.num_merges;
+    result.timings.tolerance += seconds_since(tt);
+    if (progress)
+      progress->info(std::to_string(merged.num_merges) + " merges within the tolerance (" +
+                     std::to_string(merged.num_candidates) + " milled shapes evaluated)");
   }
   result.timings.total = seconds_since(start);
   return result;

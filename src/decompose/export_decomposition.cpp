@@ -168,6 +168,8 @@ std::string decomposition_json(const Mesh& input, const DecomposeResult& result,
                     {"min_block_volume_fraction", blocks.empty() || input_volume <= 0 ? 0.0 : smallest / input_volume},
                     {"max_overhang_deg", steepest},
                     {"num_tolerance_merges", result.num_tolerance_merges},
+                    {"num_allowed_faces", result.num_allowed_faces},
+                    {"num_tolerance_rounds", result.num_tolerance_rounds},
                     {"num_sticking_out", std::count(result.filled.begin(), result.filled.end(), char{1})},
                     {"deviation_bound", result.deviation_bound},
                     {"deviation_bound_fraction", diagonal > 0 ? result.deviation_bound / diagonal : 0.0}};

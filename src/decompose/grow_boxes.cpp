@@ -393,7 +393,18 @@ GrowResult grow_boxes(const Mesh& mesh, const GrowOptions& options) {
   if (!options.fields)
     own_fields = compute_fields(mesh, FieldOptions{.grid_factor = options.grid_factor,
                                                    .max_overhang_deg = options.max_overhang_deg,
+                                                   .allowed_overhangs = options.allowed_overhangs,
                                                    .progress = nullptr});
+  if (options.allowed_overhangs && options.allowed_overhangs->size() != mesh.num_faces())
+    throw InvalidArgumentError("grow_boxes: one overhang allowance per face expected");
+  // The allowances of the current (refined) mesh: a face inherits its parent's.
+  const auto allowances_of = [&](const GrowResult& r) {
+    std::vector<std::uint8_t> a;
+    if (!options.allowed_overhangs) return a;
+    a.reserve(r.parent_face.size());
+    for (int parent : r.parent_face) a.push_back((*options.allowed_overhangs)[static_cast<std::size_t>(parent)]);
+    return a;
+  };
   const std::array<HeightField, 6>& fields = options.fields ? *options.fields : own_fields;
   const SizeLimits limits{options.max_height, options.machine_size};
   const double sine = overhang_sine(options.max_overhang_deg);
@@ -406,7 +417,8 @@ GrowResult grow_boxes(const Mesh& mesh, const GrowOptions& options) {
   std::vector<Vec3> seed_points;  // centroids of all seeds so far (farthest-point order)
 
   for (int level = 0;; ++level) {
-    const SolidIndex index(result.mesh, sine);
+    const std::vector<std::uint8_t> allowed = allowances_of(result);
+    const SolidIndex index(result.mesh, sine, options.allowed_overhangs ? &allowed : nullptr);
     const Grower grower(index, fields, limits, true);
     const int nf = index.num_faces();
     // Boxes from before a refinement stay valid (same surface); re-check
@@ -544,7 +556,8 @@ GrowResult grow_boxes(const Mesh& mesh, const GrowOptions& options) {
       if (lists_current) unique_covered.push_back(std::move(result.covered[i]));
     }
     result.boxes = std::move(unique);
-    const SolidIndex index(result.mesh, sine);
+    const std::vector<std::uint8_t> allowed = allowances_of(result);
+    const SolidIndex index(result.mesh, sine, options.allowed_overhangs ? &allowed : nullptr);
     if (lists_current) {
       result.covered = std::move(unique_covered);
     } else {

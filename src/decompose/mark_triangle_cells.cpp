@@ -34,10 +34,11 @@ std::size_t num_grid_cells(const GridGeometry& grid) {
   return n;
 }
 
-std::vector<std::uint16_t> mark_triangle_cells(const Mesh& mesh, const GridGeometry& grid, double overhang_sine) {
+std::vector<std::uint16_t> mark_triangle_cells(const Mesh& mesh, const GridGeometry& grid, double overhang_sine,
+                                               const std::vector<std::uint8_t>* allowed) {
   std::vector<std::uint16_t> flags(num_grid_cells(grid), 0);
   if (flags.empty()) return flags;
-  const auto signs = facing_signs(mesh, overhang_sine);  // exact signs when overhang_sine = 0
+  const auto signs = facing_signs(mesh, overhang_sine, allowed);  // exact signs when neither is given
   parallel_for(
       0, mesh.num_faces(),
       [&](std::size_t f) {
@@ -60,10 +61,10 @@ std::vector<std::uint16_t> mark_triangle_cells(const Mesh& mesh, const GridGeome
         const Kernel::Triangle_3 triangle(Point3(a.x(), a.y(), a.z()), Point3(b.x(), b.y(), b.z()),
                                           Point3(c.x(), c.y(), c.z()));
         // A zero-area triangle is tested as the segment or point it spans.
-        // (All facing signs 0 can also mean an allowance above 1/sqrt(3): ask the exact signs.)
+        // (All facing signs 0 can also mean an allowance above 1/sqrt(3) or a tolerance: ask the exact signs.)
         const bool degenerate =
             signs[f][0] == 0 && signs[f][1] == 0 && signs[f][2] == 0 &&
-            (overhang_sine <= 0.0 || exact_normal_signs(a, b, c) == std::array<std::int8_t, 3>{0, 0, 0});
+            ((overhang_sine <= 0.0 && !allowed) || exact_normal_signs(a, b, c) == std::array<std::int8_t, 3>{0, 0, 0});
         // A vertex in the closed cell (exact comparisons) decides without the full test.
         const auto has_vertex_in_cell = [&](int i, int j, int k) {
           const Vec3 cell_lo = grid.point(i, j, k), cell_hi = grid.point(i + 1, j + 1, k + 1);

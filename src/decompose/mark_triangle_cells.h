@@ -34,6 +34,8 @@ inline std::size_t cell_index(const GridGeometry& grid, int i, int j, int k) {
 //! (exact triangle / box test, CGAL Epick). Parallel over triangles; the OR is
 //! order independent, so the result does not depend on the thread count.
 //! \param overhang_sine allowance s >= 0 of the facing signs (0: exact)
-std::vector<std::uint16_t> mark_triangle_cells(const Mesh& mesh, const GridGeometry& grid, double overhang_sine = 0.0);
+//! \param allowed optional per-face allowances of the facing signs (facing_signs())
+std::vector<std::uint16_t> mark_triangle_cells(const Mesh& mesh, const GridGeometry& grid, double overhang_sine = 0.0,
+                                               const std::vector<std::uint8_t>* allowed = nullptr);
 
 }  // namespace subfab::detail

@@ -1,9 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "subfab/decompose/merge_blocks.h"
 
-#include <CGAL/Polygon_mesh_processing/connected_components.h>
-#include <CGAL/Polygon_mesh_processing/corefinement.h>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -12,7 +9,7 @@
 #include <string>
 #include <utility>
 
-#include "geometry/deterministic_arena.h"
+#include "decompose/block_pairs_detail.h"
 #include "geometry/exact_mesh.h"
 #include "subfab/core/parallel.h"
 #include "subfab/decompose/finalize_blocks.h"
@@ -21,13 +18,8 @@
 namespace subfab {
 namespace {
 
-namespace PMP = CGAL::Polygon_mesh_processing;
 using detail::ExactMesh;
 using detail::ExactPoint;
-
-bool boxes_touch(const BoundingBox& a, const BoundingBox& b) {
-  return (a.min.array() <= b.max.array()).all() && (b.min.array() <= a.max.array()).all();
-}
 
 //! Exact height-field test of a closed exact mesh along an axis; under an
 //! overhang allowance s > 0 a face with unit n.d >= -s also passes.
@@ -53,15 +45,6 @@ bool exact_height_field(const ExactMesh& m, Axis axis, double sine) {
       if ((s > 0 ? (*p)[k] : -(*p)[k]) != *base) return false;
   }
   return true;
-}
-
-bool within_limits(const Mesh& m, Axis axis, const MergeOptions& o) {
-  const Vec3 size = bounding_box(m).size();
-  const int k = axis_dimension(axis);
-  const double h = size[k];
-  const double a = size[(k + 1) % 3], b = size[(k + 2) % 3];
-  if (h > o.max_height || h > o.machine_size.z()) return false;
-  return (a <= o.machine_size.x() && b <= o.machine_size.y()) || (a <= o.machine_size.y() && b <= o.machine_size.x());
 }
 
 //! Cheap necessary condition for the union of `self` and `other` to be a
@@ -123,32 +106,21 @@ struct Union {
 //! tolerance) and is kept only if it then passes export's block check.
 std::optional<Union> try_union(const Block& a, const Block& b, const std::vector<Axis>& axes, const MergeOptions& o) {
   if (axes.empty()) return std::nullopt;
-  if (detail::count_degenerate_faces(a.mesh) > 0 || detail::count_degenerate_faces(b.mesh) > 0) return std::nullopt;
-  std::optional<Union> out;
-  bool needs_cleanup = false;
-  detail::warm_up_exact_booleans();
-  {
-    detail::DeterministicArena arena;
-    try {
-      ExactMesh ea = detail::to_exact(a.mesh), eb = detail::to_exact(b.mesh), u;
-      const auto np = CGAL::parameters::throw_on_self_intersection(true);
-      if (PMP::corefine_and_compute_union(ea, eb, u, np, np) && u.number_of_faces() > 0) {
-        auto fcc = u.add_property_map<ExactMesh::Face_index, std::size_t>("f:cc", 0).first;
-        const double sine = overhang_sine(o.max_overhang_deg);
-        const auto axis =
-            std::find_if(axes.begin(), axes.end(), [&](Axis x) { return exact_height_field(u, x, sine); });
-        if (axis != axes.end() && PMP::connected_components(u, fcc) == 1) {
-          detail::SuspendArena heap;
-          detail::RoundingReport rounding;
-          out = Union{detail::to_double(u, &rounding), *axis};
-          needs_cleanup = rounding.num_degenerate_faces + rounding.num_flipped_faces > 0;
-        }
-      }
-    } catch (const std::exception&) {
-      // An exact boolean that fails means: do not merge this pair.
-    }
-  }
-  if (!out) return std::nullopt;
+  const double sine = overhang_sine(o.max_overhang_deg);
+  Axis union_axis = Axis::PosZ;
+  detail::RoundingReport rounding;
+  std::optional<Mesh> mesh = detail::exact_block_union(
+      a.mesh, b.mesh,
+      [&](const ExactMesh& u) {
+        const auto axis = std::find_if(axes.begin(), axes.end(), [&](Axis x) { return exact_height_field(u, x, sine); });
+        if (axis == axes.end()) return false;
+        union_axis = *axis;
+        return true;
+      },
+      rounding);
+  if (!mesh) return std::nullopt;
+  std::optional<Union> out = Union{std::move(*mesh), union_axis};
+  const bool needs_cleanup = rounding.num_degenerate_faces + rounding.num_flipped_faces > 0;
   const Vec3 direction = axis_direction(out->axis);
   if (needs_cleanup) {
     const BoundingBox box = bounding_box(out->mesh);
@@ -167,7 +139,7 @@ std::optional<Union> try_union(const Block& a, const Block& b, const std::vector
   HeightFieldOptions height_field;
   height_field.normal_tolerance = height_field_normal_tolerance(o.max_overhang_deg);
   if (!check_closed_solid(out->mesh).ok() || !is_height_field(out->mesh, direction, height_field) ||
-      !within_limits(out->mesh, out->axis, o))
+      !detail::within_limits(bounding_box(out->mesh), out->axis, o.max_height, o.machine_size))
     return std::nullopt;
   return out;
 }
@@ -180,18 +152,16 @@ MergeResult merge_blocks(std::vector<Block> blocks, const MergeOptions& options)
   std::vector<std::size_t> ids(blocks.size());
   for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = i;
   std::size_t next_id = blocks.size();
+  std::vector<std::vector<std::size_t>> parts(blocks.size());
+  for (std::size_t i = 0; i < parts.size(); ++i) parts[i] = {i};
   std::map<std::pair<std::size_t, std::size_t>, bool> rejected;
   for (int round = 0; round < options.max_rounds; ++round) {
-    std::vector<BoundingBox> boxes(blocks.size());
-    std::vector<double> volumes(blocks.size());
-    for (std::size_t i = 0; i < blocks.size(); ++i) {
-      boxes[i] = bounding_box(blocks[i].mesh);
-      volumes[i] = signed_volume(blocks[i].mesh);
-    }
+    const std::vector<BoundingBox> boxes = detail::block_boxes(blocks);
+    const std::vector<double> volumes = detail::block_volumes(blocks);
     std::vector<std::pair<std::size_t, std::size_t>> pairs;
     for (std::size_t i = 0; i < blocks.size(); ++i)
       for (std::size_t j = i + 1; j < blocks.size(); ++j)
-        if ((options.any_direction || blocks[i].axis == blocks[j].axis) && boxes_touch(boxes[i], boxes[j]) &&
+        if ((options.any_direction || blocks[i].axis == blocks[j].axis) && detail::boxes_touch(boxes[i], boxes[j]) &&
             !rejected.count({ids[i], ids[j]}))
           pairs.emplace_back(i, j);
     if (pairs.empty()) break;
@@ -219,6 +189,8 @@ MergeResult merge_blocks(std::vector<Block> blocks, const MergeOptions& options)
       blocks[i].mesh = std::move(unions[p]->mesh);
       blocks[i].axis = unions[p]->axis;
       ids[i] = next_id++;
+      parts[i].insert(parts[i].end(), parts[j].begin(), parts[j].end());
+      std::sort(parts[i].begin(), parts[i].end());
       removed[j] = 1;
       ++merged_now;
     }
@@ -226,18 +198,22 @@ MergeResult merge_blocks(std::vector<Block> blocks, const MergeOptions& options)
     result.num_merges += merged_now;
     std::vector<Block> kept;
     std::vector<std::size_t> kept_ids;
+    std::vector<std::vector<std::size_t>> kept_parts;
     for (std::size_t i = 0; i < blocks.size(); ++i)
       if (!removed[i]) {
         kept.push_back(std::move(blocks[i]));
         kept_ids.push_back(ids[i]);
+        kept_parts.push_back(std::move(parts[i]));
       }
     blocks = std::move(kept);
     ids = std::move(kept_ids);
+    parts = std::move(kept_parts);
   }
   if (options.progress)
     options.progress->info(std::to_string(result.num_merges) + " merges of adjacent blocks (" +
                            std::to_string(result.num_candidates) + " pairs tried exactly)");
   result.blocks = std::move(blocks);
+  result.parts = std::move(parts);
   return result;
 }
 

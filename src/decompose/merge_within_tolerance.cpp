@@ -1,17 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "subfab/decompose/merge_within_tolerance.h"
 
-#include <CGAL/AABB_traits.h>
-#include <CGAL/AABB_tree.h>
-#include <CGAL/AABB_triangle_primitive.h>
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Polygon_mesh_processing/connected_components.h>
-#include <CGAL/Polygon_mesh_processing/corefinement.h>
-
 #include <algorithm>
-#include <chrono>
-#include <cstdio>
-#include <cstdlib>
 #include <atomic>
 #include <cmath>
 #include <map>
@@ -20,8 +10,8 @@
 #include <tuple>
 #include <utility>
 
-#include "geometry/deterministic_arena.h"
-#include "geometry/exact_mesh.h"
+#include "decompose/block_pairs_detail.h"
+#include "geometry/undercut_depth.h"
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
 #include "subfab/validate/measure_fill_deviation.h"
@@ -31,13 +21,6 @@
 
 namespace subfab {
 namespace {
-
-namespace PMP = CGAL::Polygon_mesh_processing;
-using detail::ExactMesh;
-
-bool boxes_touch(const BoundingBox& a, const BoundingBox& b) {
-  return (a.min.array() <= b.max.array()).all() && (b.min.array() <= a.max.array()).all();
-}
 
 bool interiors_meet(const BoundingBox& a, const BoundingBox& b) {
   return (a.min.array() < b.max.array()).all() && (b.min.array() < a.max.array()).all();
@@ -49,92 +32,40 @@ BoundingBox widened(BoundingBox box, double margin) {
   return box;
 }
 
-bool within_limits(const BoundingBox& box, Axis axis, const ToleranceMergeOptions& o) {
-  const Vec3 size = box.size();
-  const int k = axis_dimension(axis);
-  const double h = size[k];
-  const double a = size[(k + 1) % 3], b = size[(k + 2) % 3];
-  if (h > o.max_height || h > o.machine_size.z()) return false;
-  return (a <= o.machine_size.x() && b <= o.machine_size.y()) || (a <= o.machine_size.y() && b <= o.machine_size.x());
-}
-
 //! The union of two touching blocks when it is one closed 2-manifold piece
 //! that rounds to doubles without degenerate or flipped faces (exact
 //! corefinement in a deterministic arena).
 std::optional<Mesh> exact_union(const Mesh& a, const Mesh& b) {
-  if (detail::count_degenerate_faces(a) > 0 || detail::count_degenerate_faces(b) > 0) return std::nullopt;
-  detail::warm_up_exact_booleans();
-  std::optional<Mesh> out;
-  detail::DeterministicArena arena;
-  try {
-    ExactMesh ea = detail::to_exact(a), eb = detail::to_exact(b), u;
-    const auto np = CGAL::parameters::throw_on_self_intersection(true);
-    if (PMP::corefine_and_compute_union(ea, eb, u, np, np) && u.number_of_faces() > 0) {
-      auto fcc = u.add_property_map<ExactMesh::Face_index, std::size_t>("f:cc", 0).first;
-      if (PMP::connected_components(u, fcc) == 1) {
-        detail::SuspendArena heap;
-        detail::RoundingReport rounding;
-        Mesh m = detail::to_double(u, &rounding);
-        if (rounding.num_degenerate_faces + rounding.num_flipped_faces == 0) out = std::move(m);
-      }
-    }
-  } catch (const std::exception&) {
-    // An exact boolean that fails means: do not merge this pair.
-  }
-  return out;
+  detail::RoundingReport rounding;
+  std::optional<Mesh> u = detail::exact_block_union(a, b, nullptr, rounding);
+  if (u && rounding.num_degenerate_faces + rounding.num_flipped_faces > 0) return std::nullopt;
+  return u;
 }
 
 //! Quick screen of a direction for the union `u` (a heuristic: it only
 //! skips directions, the exact tests decide): the thickness of the material
 //! a machine would leave under each face of u that leans past vertical
-//! (the free length along -d below the face's centroid, to u or the base,
-//! times the face's unit n.d) must stay within `limit`. Thick fills put the
-//! input surface they cover far from any surface of the result.
+//! (UndercutDepth: the free length along -d below the face, to u or the
+//! base, times the face's unit n.d) must stay within `limit`. Thick fills
+//! put the input surface they cover far from any surface of the result.
 class FillScreen {
  public:
-  explicit FillScreen(const Mesh& u) : mesh_(u) {
-    triangles_.reserve(u.num_faces());
-    for (const Triangle& t : u.faces)
-      triangles_.emplace_back(point(u.vertices[static_cast<std::size_t>(t[0])]),
-                              point(u.vertices[static_cast<std::size_t>(t[1])]),
-                              point(u.vertices[static_cast<std::size_t>(t[2])]));
-    tree_.insert(triangles_.begin(), triangles_.end());
-  }
+  explicit FillScreen(const Mesh& u) : depth_(u) {}
 
   bool passes(const Vec3& d, double limit) const {
+    const Mesh& mesh = depth_.mesh();
     double base = std::numeric_limits<double>::infinity();
-    for (const Vec3& v : mesh_.vertices) base = std::min(base, v.dot(d));
-    for (std::size_t f = 0; f < mesh_.num_faces(); ++f) {
-      const Vec3 n = face_unit_normal(mesh_, f);
-      const double c = -n.dot(d);
-      if (!(c > 1e-3)) continue;
-      const Triangle& t = mesh_.faces[f];
-      const Vec3 centroid = (mesh_.vertices[static_cast<std::size_t>(t[0])] + mesh_.vertices[static_cast<std::size_t>(t[1])] +
-                             mesh_.vertices[static_cast<std::size_t>(t[2])]) / 3.0;
-      double free = centroid.dot(d) - base;
-      if (free * c <= limit) continue;
-      const Epick::Ray_3 ray(point(centroid), Epick::Direction_3(-d.x(), -d.y(), -d.z()));
-      const auto self = triangles_.begin() + static_cast<std::ptrdiff_t>(f);
-      const auto skip = [self](std::vector<Tri>::const_iterator id) { return id == self; };
-      if (const auto hit = tree_.first_intersection(ray, skip)) {
-        if (const Epick::Point_3* p = boost::get<Epick::Point_3>(&hit->first))
-          free = std::min(free, std::sqrt(CGAL::squared_distance(*p, point(centroid))));
-        else
-          free = 0.0;
-      }
-      if (free * c > limit) return false;
+    for (const Vec3& v : mesh.vertices) base = std::min(base, v.dot(d));
+    for (std::size_t f = 0; f < mesh.num_faces(); ++f) {
+      double top = -std::numeric_limits<double>::infinity();
+      for (int v : mesh.faces[f]) top = std::max(top, mesh.vertices[static_cast<std::size_t>(v)].dot(d));
+      if (depth_.depth(f, d, top - base, limit) > limit) return false;
     }
     return true;
   }
 
  private:
-  using Epick = CGAL::Exact_predicates_inexact_constructions_kernel;
-  using Tri = Epick::Triangle_3;
-  using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Epick, CGAL::AABB_triangle_primitive<Epick, std::vector<Tri>::const_iterator>>>;
-  static Epick::Point_3 point(const Vec3& p) { return Epick::Point_3(p.x(), p.y(), p.z()); }
-  const Mesh& mesh_;
-  std::vector<Tri> triangles_;
-  Tree tree_;
+  detail::UndercutDepth depth_;
 };
 
 //! An accepted merge.
@@ -152,9 +83,6 @@ struct State {
   const std::vector<BoundingBox>& boxes;
   const std::vector<double>& volumes;
 };
-
-double now_s() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
-const bool kDebug = std::getenv("SUBFAB_DEBUG_TOLERANCE") != nullptr;
 
 std::optional<Candidate> evaluate(std::size_t i, std::size_t j, const State& s, const FillDeviationMeter& meter,
                                   const ToleranceMergeOptions& o, std::size_t& tried) {
@@ -180,12 +108,10 @@ std::optional<Candidate> evaluate(std::size_t i, std::size_t j, const State& s, 
   const FillScreen screen(both);
   std::vector<Axis> axes;
   for (Axis axis : order)
-    if (within_limits(ubox, axis, o) && screen.passes(axis_direction(axis), o.screen_factor * o.tolerance))
+    if (detail::within_limits(ubox, axis, o.max_height, o.machine_size) && screen.passes(axis_direction(axis), o.screen_factor * o.tolerance))
       axes.push_back(axis);
   if (axes.empty()) return std::nullopt;
-  double t0 = now_s();
   const std::optional<Mesh> u = exact_union(s.blocks[i].mesh, s.blocks[j].mesh);
-  if (kDebug) std::fprintf(stderr, "pair %zu %zu: %zu axes, union %.3f s %s\n", i, j, axes.size(), now_s() - t0, u ? "ok" : "failed");
   if (!u) return std::nullopt;
   std::vector<const Mesh*> others;
   for (std::size_t k = 0; k < s.blocks.size(); ++k)
@@ -194,25 +120,18 @@ std::optional<Candidate> evaluate(std::size_t i, std::size_t j, const State& s, 
   for (Axis axis : axes) {
     const Vec3 d = axis_direction(axis);
     MilledShape milled;
-    t0 = now_s();
     try {
       milled = milled_shape(*u, d);
     } catch (const std::exception&) {
       continue;
     }
-    if (kDebug) std::fprintf(stderr, "  axis %d: milled %.3f s, %zu faces\n", int(axis), now_s() - t0, milled.mesh.num_faces());
     ++tried;
     if (milled.is_block) return Candidate{*u, axis, s.filled[i] || s.filled[j], 0.0};
     const Mesh& m = milled.mesh;
     if (!check_closed_solid(m).ok() || !is_height_field(m, d)) continue;
     // The deviation first (it rejects most), then collisions (exact booleans).
-    t0 = now_s();
     const FillDeviation dev = meter.measure(m, others, {.reach = o.tolerance, .error = error, .max_faces = o.max_region_faces});
-    if (kDebug)
-      std::fprintf(stderr, "  axis %d: meter %.3f s, to %.3g from %.3g (T %.3g) %s\n", int(axis), now_s() - t0,
-                   dev.to_input, dev.from_input, o.tolerance, dev.failure.c_str());
     if (!dev.failure.empty() || dev.bound() > o.tolerance) continue;
-    t0 = now_s();
     const BoundingBox mbox = bounding_box(m);
     const double volume = signed_volume(m);
     bool collides = false;
@@ -228,7 +147,6 @@ std::optional<Candidate> evaluate(std::size_t i, std::size_t j, const State& s, 
         collides = true;
       }
     }
-    if (kDebug) std::fprintf(stderr, "  axis %d: collision %.3f s %d\n", int(axis), now_s() - t0, int(collides));
     if (collides) continue;
     return Candidate{m, axis, true, dev.bound()};
   }
@@ -245,24 +163,22 @@ ToleranceMergeResult merge_within_tolerance(const Mesh& solid, std::vector<Block
     throw InvalidArgumentError("merge_within_tolerance: the error fraction must lie in (0, 1)");
   ToleranceMergeResult result;
   const FillDeviationMeter meter(solid);
-  std::vector<char> filled(blocks.size(), 0);
+  if (options.filled && options.filled->size() != blocks.size())
+    throw InvalidArgumentError("merge_within_tolerance: one filled flag per block expected");
+  std::vector<char> filled = options.filled ? *options.filled : std::vector<char>(blocks.size(), 0);
   std::vector<std::size_t> ids(blocks.size());
   for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = i;
   std::size_t next_id = blocks.size();
   std::map<std::pair<std::size_t, std::size_t>, bool> rejected;
   StageScope stage(options.progress, "tolerance merge");
   for (int round = 0; round < options.max_rounds; ++round) {
-    std::vector<BoundingBox> boxes(blocks.size());
-    std::vector<double> volumes(blocks.size());
-    for (std::size_t i = 0; i < blocks.size(); ++i) {
-      boxes[i] = bounding_box(blocks[i].mesh);
-      volumes[i] = signed_volume(blocks[i].mesh);
-    }
+    const std::vector<BoundingBox> boxes = detail::block_boxes(blocks);
+    const std::vector<double> volumes = detail::block_volumes(blocks);
     // pairs, smallest smaller block first
     std::vector<std::tuple<double, std::size_t, std::size_t>> order;
     for (std::size_t i = 0; i < blocks.size(); ++i)
       for (std::size_t j = i + 1; j < blocks.size(); ++j)
-        if (boxes_touch(boxes[i], boxes[j]) && !rejected.count({ids[i], ids[j]}) &&
+        if (detail::boxes_touch(boxes[i], boxes[j]) && !rejected.count({ids[i], ids[j]}) &&
             blocks[i].mesh.num_faces() + blocks[j].mesh.num_faces() <= options.max_pair_faces)
           order.emplace_back(std::min(volumes[i], volumes[j]), i, j);
     if (order.empty()) break;
@@ -289,7 +205,7 @@ ToleranceMergeResult merge_within_tolerance(const Mesh& solid, std::vector<Block
       }
       if (used[i] || used[j]) continue;  // evaluated again next round
       const BoundingBox reach = widened(bounding_box(found[p]->mesh), margin);
-      if (std::any_of(changed.begin(), changed.end(), [&](const BoundingBox& c) { return boxes_touch(c, reach); }))
+      if (std::any_of(changed.begin(), changed.end(), [&](const BoundingBox& c) { return detail::boxes_touch(c, reach); }))
         continue;  // near a block changed this round: evaluated again next round
       used[i] = used[j] = 1;
       changed.push_back(reach);

@@ -227,7 +227,7 @@ ResolveResult resolve_overlaps(const SolidIndex& index, std::vector<HeightBox> b
 namespace subfab {
 
 ResolveResult resolve_overlaps(const Mesh& mesh, std::vector<HeightBox> boxes, const ResolveOptions& options) {
-  const detail::SolidIndex index(mesh, overhang_sine(options.max_overhang_deg));
+  const detail::SolidIndex index(mesh, overhang_sine(options.max_overhang_deg), options.allowed_overhangs);
   return detail::resolve_overlaps(index, std::move(boxes), options);
 }
 

@@ -209,7 +209,7 @@ SnapShrinkResult snap_and_shrink(const SolidIndex& index, std::vector<HeightBox>
 namespace subfab {
 
 SnapShrinkResult snap_and_shrink(const Mesh& mesh, std::vector<HeightBox> boxes, const SnapShrinkOptions& options) {
-  const detail::SolidIndex index(mesh, overhang_sine(options.max_overhang_deg));
+  const detail::SolidIndex index(mesh, overhang_sine(options.max_overhang_deg), options.allowed_overhangs);
   return detail::snap_and_shrink(index, std::move(boxes), options);
 }
 

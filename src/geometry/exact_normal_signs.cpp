@@ -2,6 +2,7 @@
 #include "geometry/exact_normal_signs.h"
 
 #include "geometry/exact_determinant_signs.h"
+#include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
 
 namespace subfab::detail {
@@ -21,7 +22,10 @@ std::array<std::int8_t, 3> facing_signs(const Vec3& a, const Vec3& b, const Vec3
   return signs;
 }
 
-std::vector<std::array<std::int8_t, 3>> facing_signs(const Mesh& mesh, double overhang_sine) {
+std::vector<std::array<std::int8_t, 3>> facing_signs(const Mesh& mesh, double overhang_sine,
+                                                     const std::vector<std::uint8_t>* allowed) {
+  if (allowed && allowed->size() != mesh.num_faces())
+    throw InvalidArgumentError("facing_signs: one allowance per face expected");
   std::vector<std::array<std::int8_t, 3>> signs(mesh.num_faces());
   parallel_for(
       0, mesh.num_faces(),
@@ -30,6 +34,9 @@ std::vector<std::array<std::int8_t, 3>> facing_signs(const Mesh& mesh, double ov
         signs[f] = facing_signs(mesh.vertices[static_cast<std::size_t>(t[0])],
                                 mesh.vertices[static_cast<std::size_t>(t[1])],
                                 mesh.vertices[static_cast<std::size_t>(t[2])], overhang_sine);
+        if (allowed)
+          for (int k = 0; k < 3; ++k)
+            if ((*allowed)[f] & (1u << k)) signs[f][static_cast<std::size_t>(k)] = 0;
       },
       1024);
   return signs;

@@ -30,6 +30,11 @@ std::vector<std::array<std::int8_t, 3>> exact_normal_signs(const Mesh& mesh);
 std::array<std::int8_t, 3> facing_signs(const Vec3& a, const Vec3& b, const Vec3& c, double overhang_sine);
 
 //! facing_signs() for every face of the mesh, in face order (parallel).
-std::vector<std::array<std::int8_t, 3>> facing_signs(const Mesh& mesh, double overhang_sine);
+//! `allowed` (optional, one entry per face): bit k set makes component k 0,
+//! so the face counts as facing both +e_k and -e_k (decompose --tolerance:
+//! the undercut under the face is within the tolerance, see
+//! tolerance_allowances()).
+std::vector<std::array<std::int8_t, 3>> facing_signs(const Mesh& mesh, double overhang_sine,
+                                                     const std::vector<std::uint8_t>* allowed = nullptr);
 
 }  // namespace subfab::detail

@@ -1,37 +1,22 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "geometry/hausdorff_distance.h"
 
-#include <CGAL/AABB_traits.h>
-#include <CGAL/AABB_tree.h>
-#include <CGAL/AABB_triangle_primitive.h>
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
+#include "geometry/triangle_tree.h"
 #include "subfab/core/parallel.h"
 
 namespace subfab::detail {
 
 namespace {
 
-using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Triangle = K::Triangle_3;
-using Iterator = std::vector<Triangle>::const_iterator;
-using Primitive = CGAL::AABB_triangle_primitive<K, Iterator>;
-using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
-
-K::Point_3 to_point(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
-
 // Largest distance from samples of `from` to the surface of `to`.
 double one_sided(const Mesh& from, const Mesh& to, std::size_t samples) {
-  std::vector<Triangle> triangles;
-  triangles.reserve(to.faces.size());
-  for (const auto& f : to.faces)
-    triangles.emplace_back(to_point(to.vertices[f[0]]), to_point(to.vertices[f[1]]), to_point(to.vertices[f[2]]));
-  Tree tree(triangles.begin(), triangles.end());
-  tree.accelerate_distance_queries();
+  TriangleTree surface(to);
+  surface.accelerate_distance_queries();
+  const TriangleTree::Tree& tree = surface.tree();
   const double area = surface_area(from);
   const double cell = area > 0 ? area / static_cast<double>(std::max<std::size_t>(samples, 1)) : 1.0;
   std::vector<double> worst(from.faces.size(), 0.0);
@@ -46,7 +31,7 @@ double one_sided(const Mesh& from, const Mesh& to, std::size_t samples) {
       for (int j = 0; i + j <= n; ++j) {
         const double u = double(i) / n, v = double(j) / n;
         const Vec3 p = a + u * (b - a) + v * (c - a);
-        w = std::max(w, std::sqrt(CGAL::to_double(tree.squared_distance(to_point(p)))));
+        w = std::max(w, std::sqrt(CGAL::to_double(tree.squared_distance(TriangleTree::point(p)))));
       }
     worst[t] = w;
   }, 64);
@@ -56,24 +41,19 @@ double one_sided(const Mesh& from, const Mesh& to, std::size_t samples) {
 }  // namespace
 
 struct SurfaceDistance::Impl {
-  std::vector<Triangle> triangles;
-  Tree tree;
+  explicit Impl(const Mesh& mesh) : surface(mesh) {}
+  TriangleTree surface;
 };
 
-SurfaceDistance::SurfaceDistance(const Mesh& mesh) : impl_(std::make_unique<Impl>()) {
-  for (const auto& f : mesh.faces)
-    impl_->triangles.emplace_back(to_point(mesh.vertices[f[0]]), to_point(mesh.vertices[f[1]]),
-                                  to_point(mesh.vertices[f[2]]));
-  impl_->tree.insert(impl_->triangles.begin(), impl_->triangles.end());
-  impl_->tree.build();
-  impl_->tree.accelerate_distance_queries();
+SurfaceDistance::SurfaceDistance(const Mesh& mesh) : impl_(std::make_unique<Impl>(mesh)) {
+  impl_->surface.accelerate_distance_queries();
 }
 
 SurfaceDistance::~SurfaceDistance() = default;
 
 double SurfaceDistance::operator()(const Vec3& p) const {
-  if (impl_->triangles.empty()) return std::numeric_limits<double>::infinity();
-  return std::sqrt(CGAL::to_double(impl_->tree.squared_distance(to_point(p))));
+  if (impl_->surface.triangles().empty()) return std::numeric_limits<double>::infinity();
+  return std::sqrt(CGAL::to_double(impl_->surface.tree().squared_distance(TriangleTree::point(p))));
 }
 
 double hausdorff_distance(const Mesh& a, const Mesh& b, std::size_t samples_per_mesh) {

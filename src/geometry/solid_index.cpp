@@ -166,7 +166,8 @@ bool overlaps_open(const Box3& node, const Box3& box) {
 }
 }  // namespace
 
-SolidIndex::SolidIndex(const Mesh& mesh, double overhang_sine) : impl_(std::make_unique<Impl>()) {
+SolidIndex::SolidIndex(const Mesh& mesh, double overhang_sine, const std::vector<std::uint8_t>* allowed)
+    : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
   m.mesh = mesh;
   const std::size_t nf = mesh.faces.size();
@@ -186,7 +187,7 @@ SolidIndex::SolidIndex(const Mesh& mesh, double overhang_sine) : impl_(std::make
     for (int k = 0; k < 3; ++k)
       m.normal_signs[f][static_cast<std::size_t>(k)] = static_cast<std::int8_t>(normal_component_sign(a, b, c, k));
   }
-  m.facing = overhang_sine > 0.0 ? facing_signs(mesh, overhang_sine) : m.normal_signs;
+  m.facing = overhang_sine > 0.0 || allowed ? facing_signs(mesh, overhang_sine, allowed) : m.normal_signs;
   for (Axis axis : kAllAxes) {
     auto& list = m.away[static_cast<std::size_t>(axis_index(axis))];
     for (std::size_t f = 0; f < nf; ++f)

@@ -38,6 +38,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <vector>
@@ -54,7 +55,10 @@ class SolidIndex {
   //! \param mesh closed, oriented, self-intersection-free triangle mesh
   //!        (canonical frame); is_inside is meaningless otherwise.
   //! \param overhang_sine allowance s >= 0 of the facing test (0: exact)
-  explicit SolidIndex(const Mesh& mesh, double overhang_sine = 0.0);
+  //! \param allowed optional per-face allowances of the facing test (see
+  //!        facing_signs(); decompose --tolerance), copied
+  explicit SolidIndex(const Mesh& mesh, double overhang_sine = 0.0,
+                      const std::vector<std::uint8_t>* allowed = nullptr);
   ~SolidIndex();
   SolidIndex(const SolidIndex&) = delete;
   SolidIndex& operator=(const SolidIndex&) = delete;

@@ -93,10 +93,9 @@ MeshRepairStep stitch_borders(RepairSurface& mesh) {
   mesh.collect_garbage();
   if (!step.applied()) step.where.reset();
   step.num_faces_removed = faces_before - mesh.number_of_faces();
-  step.message = step.applied() ? std::to_string(step.num_found) +
-                                      " pairs of border edges with the same end positions sewn together (e.g. at " +
-                                      (step.where ? position_text(*step.where) : std::string("?")) + ")"
-                                : "no border edges to sew together";
+  step.message = step_message(
+      step, " pairs of border edges with the same end positions sewn together (e.g. at ",
+      "no border edges to sew together");
   return step;
 }
 
@@ -123,12 +122,12 @@ MeshRepairStep remove_small_components(RepairSurface& mesh, double min_fraction)
   step.num_found = remove.size();
   remove_components(mesh, remove, map);
   mesh.remove_property_map(map);
-  step.message = step.applied() ? std::to_string(step.num_found) + " of " + std::to_string(n) +
-                                      " pieces smaller than " + std::to_string(min_fraction) +
-                                      " x the largest piece's bbox diagonal removed (" +
-                                      std::to_string(step.num_faces_removed) + " faces; e.g. at " +
-                                      position_text(*step.where) + ")"
-                                : std::to_string(n) + (n == 1 ? " piece" : " pieces") + ", none small";
+  step.message = step_message(step,
+                              " of " + std::to_string(n) + " pieces smaller than " +
+                                  std::to_string(min_fraction) +
+                                  " x the largest piece's bbox diagonal removed (" +
+                                  std::to_string(step.num_faces_removed) + " faces; e.g. at ",
+                              std::to_string(n) + (n == 1 ? " piece" : " pieces") + ", none small");
   return step;
 }
 
@@ -228,12 +227,11 @@ MeshRepairStep remove_flat_components(RepairSurface& mesh) {
   step.num_found = remove.size();
   remove_components(mesh, remove, map);
   mesh.remove_property_map(map);
-  step.message = step.applied() ? std::to_string(step.num_found) +
-                                      " closed pieces that enclose no volume (|volume| <= 1e-9 x bbox diagonal^3: "
-                                      "sheets closed onto themselves) removed (" +
-                                      std::to_string(step.num_faces_removed) + " faces; e.g. at " +
-                                      position_text(*step.where) + ")"
-                                : "every piece encloses a volume";
+  step.message = step_message(step,
+                              " closed pieces that enclose no volume (|volume| <= 1e-9 x bbox "
+                              "diagonal^3: sheets closed onto themselves) removed (" +
+                                  std::to_string(step.num_faces_removed) + " faces; e.g. at ",
+                              "every piece encloses a volume");
   if (mesh.number_of_faces() == 0)
     throw InvalidMeshError("the surface encloses no volume (a sheet, or pieces that close onto themselves): there is "
                            "no solid to repair; give a mesh that bounds a volume");
@@ -270,11 +268,11 @@ MeshRepairStep separate_pinches(RepairSurface& mesh, double distance) {
     }
   }
   for (const auto& [v, q] : moves) mesh.point(v) = q;
-  step.message = step.applied() ? std::to_string(step.num_found) +
-                                      " points where separate fans met (split pinched vertices or edges) pulled apart: "
-                                      "each copy moved up to " + std::to_string(largest_move) + " along its own fan (e.g. at " +
-                                      position_text(*step.where) + ")"
-                                : "no two vertices at the same position";
+  step.message = step_message(step,
+                              " points where separate fans met (split pinched vertices or edges) "
+                              "pulled apart: each copy moved up to " +
+                                  std::to_string(largest_move) + " along its own fan (e.g. at ",
+                              "no two vertices at the same position");
   return step;
 }
 
@@ -283,11 +281,10 @@ MeshRepairStep split_pinched_vertices(RepairSurface& mesh) {
   std::vector<std::vector<Vertex>> copies;
   step.num_found = PMP::duplicate_non_manifold_vertices(mesh, CGAL::parameters::output_iterator(std::back_inserter(copies)));
   if (!copies.empty() && !copies.front().empty()) step.where = to_vec3(mesh.point(copies.front().front()));
-  step.message = step.applied() ? std::to_string(step.num_found) +
-                                      " pinched vertices left by the self-intersection resolution split into one per "
-                                      "fan (e.g. at " +
-                                      (step.where ? position_text(*step.where) : std::string("?")) + ")"
-                                : "no pinched vertex";
+  step.message = step_message(
+      step,
+      " pinched vertices left by the self-intersection resolution split into one per fan (e.g. at ",
+      "no pinched vertex");
   return step;
 }
 

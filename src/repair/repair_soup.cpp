@@ -52,10 +52,8 @@ MeshRepairStep merge_duplicate_vertices(RepairSoup& soup) {
   for (auto& t : soup.triangles)
     for (auto& v : t) v = remap[v];
   soup.points = std::move(kept);
-  step.message = step.applied() ? std::to_string(step.num_found) +
-                                      " vertices at the same position as another merged (e.g. at " +
-                                      position_text(*step.where) + ")"
-                                : "no two vertices at the same position";
+  step.message = step_message(step, " vertices at the same position as another merged (e.g. at ",
+                              "no two vertices at the same position");
   return step;
 }
 
@@ -72,10 +70,9 @@ MeshRepairStep remove_repeated_corner_faces(RepairSoup& soup) {
   }
   step.num_faces_removed = step.num_found;
   soup.triangles = std::move(kept);
-  step.message = step.applied() ? std::to_string(step.num_found) +
-                                      " faces with a repeated corner (zero area, after merging) removed (e.g. at " +
-                                      position_text(*step.where) + ")"
-                                : "no face with a repeated corner";
+  step.message = step_message(
+      step, " faces with a repeated corner (zero area, after merging) removed (e.g. at ",
+      "no face with a repeated corner");
   return step;
 }
 
@@ -95,11 +92,10 @@ MeshRepairStep remove_duplicate_faces(RepairSoup& soup) {
   }
   step.num_faces_removed = step.num_found;
   soup.triangles = std::move(kept);
-  step.message = step.applied() ? std::to_string(step.num_found) +
-                                      " faces on the same three vertices as another (either orientation) removed, one "
-                                      "kept (e.g. at " +
-                                      position_text(*step.where) + ")"
-                                : "no duplicate face";
+  step.message = step_message(step,
+                              " faces on the same three vertices as another (either orientation) "
+                              "removed, one kept (e.g. at ",
+                              "no duplicate face");
   return step;
 }
 
@@ -131,16 +127,12 @@ std::vector<MeshRepairStep> orient_soup(RepairSoup& soup, RepairSurface& mesh) {
   }
   for (std::size_t f = 0; f < polygons.size(); ++f)
     soup.triangles[f] = {polygons[f][0], polygons[f][1], polygons[f][2]};
-  split.message = split.applied() ? std::to_string(split.num_found) +
-                                        " vertex copies made to split pinched vertices and edges shared by more than "
-                                        "two faces into one per fan (e.g. at " +
-                                        position_text(*split.where) + ")"
-                                  : "no pinched vertex, no edge shared by more than two faces";
-  orient.message = orient.applied()
-                       ? std::to_string(orient.num_found) +
-                             " faces flipped to agree with their neighbours (e.g. at " + position_text(*orient.where) +
-                             ")"
-                       : "neighbouring faces already agree in orientation";
+  split.message = step_message(split,
+                               " vertex copies made to split pinched vertices and edges shared by "
+                               "more than two faces into one per fan (e.g. at ",
+                               "no pinched vertex, no edge shared by more than two faces");
+  orient.message = step_message(orient, " faces flipped to agree with their neighbours (e.g. at ",
+                                "neighbouring faces already agree in orientation");
   if (!PMP::is_polygon_soup_a_polygon_mesh(polygons))
     throw InvalidMeshError("the faces cannot be made into a manifold surface even after splitting non-manifold "
                            "vertices; repair the mesh in a mesh editor");

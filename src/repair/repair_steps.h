@@ -68,4 +68,12 @@ Mesh to_plain_mesh(const RepairSurface& mesh);
 //! "(x, y, z)" with 4 significant digits.
 std::string position_text(const Vec3& p);
 
+//! The message of a step: when it applied, its count, then `found` (which
+//! ends by opening the example: "... (e.g. at "), then the example position
+//! ("?" when it has none) and ")"; `none` when it did not apply.
+inline std::string step_message(const MeshRepairStep& step, const std::string& found, const std::string& none) {
+  if (!step.applied()) return none;
+  return std::to_string(step.num_found) + found + (step.where ? position_text(*step.where) : std::string("?")) + ")";
+}
+
 }  // namespace subfab::detail

@@ -171,11 +171,10 @@ MeshRepairStep orient_outward(RepairSurface& mesh) {
       same = same || (mesh.source(h) == first[f.idx()] && mesh.target(h) == second[f.idx()]);
     if (!same && step.num_found++ == 0) step.where = face_centroid(mesh, f);
   }
-  step.message = step.applied() ? std::to_string(step.num_found) +
-                                      " faces flipped so that every shell bounds the volume (outer shells outward, "
-                                      "cavities inward; e.g. at " +
-                                      position_text(*step.where) + ")"
-                                : "every shell already bounds the volume";
+  step.message = step_message(step,
+                              " faces flipped so that every shell bounds the volume (outer shells "
+                              "outward, cavities inward; e.g. at ",
+                              "every shell already bounds the volume");
   return step;
 }
 

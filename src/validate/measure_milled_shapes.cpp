@@ -1,9 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // measure_milled_shapes(): every block's milled shape (milled_shape.cpp) and
 // how far it strays (CGAL bounded-error Hausdorff distances, exact booleans).
-#include <CGAL/AABB_traits.h>
-#include <CGAL/AABB_tree.h>
-#include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/distance.h>
 #include <CGAL/Surface_mesh.h>
@@ -25,6 +22,7 @@
 #include "subfab/validate/validate_decomposition.h"
 #include "geometry/solid_index.h"
 #include "geometry/surface_deviation.h"
+#include "geometry/triangle_tree.h"
 #include "validate/validate_booleans.h"
 
 namespace subfab {
@@ -151,15 +149,8 @@ BoundingBox widened(BoundingBox box, double margin) {
 //! `error` of the best value found. Inside/outside is exact (SolidIndex).
 class OutsideDistance {
  public:
-  explicit OutsideDistance(const Mesh& solid) : index_(solid) {
-    triangles_.reserve(solid.num_faces());
-    for (const Triangle& t : solid.faces) {
-      const Vec3 &a = solid.vertices[static_cast<std::size_t>(t[0])], &b = solid.vertices[static_cast<std::size_t>(t[1])],
-                 &c = solid.vertices[static_cast<std::size_t>(t[2])];
-      triangles_.emplace_back(point(a), point(b), point(c));
-    }
-    tree_.insert(triangles_.begin(), triangles_.end());
-    tree_.accelerate_distance_queries();  // before any concurrent query
+  explicit OutsideDistance(const Mesh& solid) : index_(solid), surface_(solid) {
+    surface_.accelerate_distance_queries();  // before any concurrent query
   }
 
   double sup(const Mesh& m, const std::vector<int>& faces, double error) const {
@@ -170,9 +161,9 @@ class OutsideDistance {
       std::size_t face;  // nearest surface triangle
     };
     auto corner = [&](const Vec3& p) {
-      const auto [q, it] = tree_.closest_point_and_primitive(point(p));
+      const auto [q, it] = surface_.tree().closest_point_and_primitive(point(p));
       return Corner{p, std::sqrt(CGAL::squared_distance(point(p), q)), index_.is_inside(p),
-                    static_cast<std::size_t>(it - triangles_.begin())};
+                    static_cast<std::size_t>(it - surface_.triangles().begin())};
     };
     auto g = [](const Corner& c) { return c.inside ? 0.0 : c.distance; };
     double best = 0.0;
@@ -201,7 +192,7 @@ class OutsideDistance {
       bound += reach;
       for (const Corner& c : t) {  // distance to one surface triangle is convex: its max is at a corner
         double d = 0.0;
-        for (const Corner& k : t) d = std::max(d, std::sqrt(CGAL::squared_distance(point(k.p), triangles_[c.face])));
+        for (const Corner& k : t) d = std::max(d, std::sqrt(CGAL::squared_distance(point(k.p), surface_.triangles()[c.face])));
         bound = std::min(bound, d);
       }
       if (bound <= best + error) continue;
@@ -217,12 +208,9 @@ class OutsideDistance {
   }
 
  private:
-  using Tri = Epick::Triangle_3;
-  using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Epick, CGAL::AABB_triangle_primitive<Epick, std::vector<Tri>::const_iterator>>>;
-  static Epick::Point_3 point(const Vec3& p) { return Epick::Point_3(p.x(), p.y(), p.z()); }
+  static Epick::Point_3 point(const Vec3& p) { return detail::TriangleTree::point(p); }
   detail::SolidIndex index_;
-  std::vector<Tri> triangles_;
-  Tree tree_;
+  detail::TriangleTree surface_;
 };
 
 //! Measures of one non-exact block.

@@ -1,31 +1,16 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "view/render_picture.h"
 
-#include <zlib.h>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
+#include "subfab/core/write_png.h"
 #include "view/encode_base64.h"
 
 namespace subfab::detail {
 namespace {
-
-void append_be32(std::vector<std::uint8_t>& out, std::uint32_t v) {
-  out.insert(out.end(), {std::uint8_t(v >> 24), std::uint8_t(v >> 16), std::uint8_t(v >> 8), std::uint8_t(v)});
-}
-
-//! Appends a PNG chunk: length, type, data, CRC of type and data (zlib's crc32).
-void append_chunk(std::vector<std::uint8_t>& png, const char (&type)[5], const std::vector<std::uint8_t>& data) {
-  append_be32(png, static_cast<std::uint32_t>(data.size()));
-  const std::size_t start = png.size();
-  png.insert(png.end(), type, type + 4);
-  png.insert(png.end(), data.begin(), data.end());
-  append_be32(png, static_cast<std::uint32_t>(crc32(0L, png.data() + start, static_cast<uInt>(png.size() - start))));
-}
 
 //! The z-buffered image being drawn.
 struct Canvas {
@@ -89,33 +74,6 @@ struct Canvas {
   }
 };
 
-}  // namespace
-
-std::vector<std::uint8_t> encode_png_rgb(int width, int height, const std::vector<std::uint8_t>& rgb) {
-  std::vector<std::uint8_t> rows;
-  rows.reserve((std::size_t(width) * 3 + 1) * height);
-  for (int y = 0; y < height; ++y) {
-    rows.push_back(0);  // no filter
-    rows.insert(rows.end(), rgb.begin() + std::ptrdiff_t(y) * width * 3, rgb.begin() + std::ptrdiff_t(y + 1) * width * 3);
-  }
-  uLongf size = compressBound(static_cast<uLong>(rows.size()));
-  std::vector<std::uint8_t> packed(size);
-  if (compress2(packed.data(), &size, rows.data(), static_cast<uLong>(rows.size()), 9) != Z_OK)
-    throw AlgorithmError("PNG encoding failed (zlib)");
-  packed.resize(size);
-  std::vector<std::uint8_t> png{0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-  std::vector<std::uint8_t> header;
-  append_be32(header, static_cast<std::uint32_t>(width));
-  append_be32(header, static_cast<std::uint32_t>(height));
-  header.insert(header.end(), {8, 2, 0, 0, 0});  // 8-bit RGB, deflate, no filter choice, no interlace
-  append_chunk(png, "IHDR", header);
-  append_chunk(png, "IDAT", packed);
-  append_chunk(png, "IEND", {});
-  return png;
-}
-
-namespace {
-
 //! The orthographic projection of a view: screen x right, y down, z towards the eye.
 struct Projection {
   Vec3 eye, right, up, mid;
@@ -160,7 +118,9 @@ struct Projection {
 
 std::string png_data_uri(Canvas canvas) {
   canvas.outline();
-  const std::vector<std::uint8_t> png = encode_png_rgb(canvas.width, canvas.height, canvas.rgb);
+  RgbImage image(canvas.width, canvas.height);
+  image.pixels = std::move(canvas.rgb);
+  const std::vector<std::uint8_t> png = encode_png(image);
   return "data:image/png;base64," + encode_base64(png.data(), png.size());
 }
 

@@ -52,8 +52,4 @@ class AssemblyPictures {
   int num_added_ = 0;
 };
 
-//! PNG bytes (8-bit RGB, zlib-compressed) of a width x height image given as
-//! rows of RGB bytes, top row first.
-std::vector<std::uint8_t> encode_png_rgb(int width, int height, const std::vector<std::uint8_t>& rgb);
-
 }  // namespace subfab::detail

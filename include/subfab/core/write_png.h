@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //! \file write_png.h
-//! A minimal PNG writer (8-bit RGB, no compression: deflate "stored"
-//! blocks), enough for previews (unfold's nets, mill's block maps) without
-//! an image library.
+//! The one PNG writer (8-bit RGB, zlib-compressed), enough for previews
+//! (unfold's nets, mill's block maps, view's assembly pictures) without an
+//! image library.
 #pragma once
 
 #include <cstdint>
@@ -25,7 +25,8 @@ struct RgbImage {
   }
 };
 
-//! Encodes `image` as PNG bytes.
+//! Encodes `image` as PNG bytes (8-bit RGB, zlib level 9, no row filter).
+//! \throw AlgorithmError when zlib fails.
 std::vector<std::uint8_t> encode_png(const RgbImage& image);
 
 //! Writes `image` as a PNG file. \throw IoError when the file cannot be written.

@@ -27,6 +27,8 @@
 //!   round every kept piece to doubles, in box order.
 #pragma once
 
+#include <cstdint>
+
 #include <cstddef>
 #include <limits>
 #include <vector>
@@ -58,6 +60,9 @@ struct CarveOptions {
                                   // volume X, Y, Z (model units, Z along the axis)
   double max_overhang_deg = 0.0;  // faces may lean this far past vertical and count as facing the axis (degrees,
                                   // [0, 45], see overhang_sine(); 0 = exact height fields)
+  const std::vector<std::uint8_t>* allowed_overhangs = nullptr;  // per face of the mesh passed: bit k set = the
+                                  // face counts as facing both +-e_k (decompose --tolerance: its undercut is within
+                                  // the tolerance, tolerance_allowances()); nullptr = none
   Progress* progress = nullptr;   // stage progress and warnings (nullptr: silent)
 };
 

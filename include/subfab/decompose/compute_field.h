@@ -121,6 +121,9 @@ struct FieldOptions {
   double max_height = std::numeric_limits<double>::infinity();  // block height limit, model units (infinite = none)
   double max_overhang_deg = 0.0;  // faces may lean this far past vertical and count as facing the axis (degrees,
                                   // [0, 45], see overhang_sine(); 0 = exact height fields)
+  const std::vector<std::uint8_t>* allowed_overhangs = nullptr;  // per face of the mesh passed: bit k set = the
+                                  // face counts as facing both +-e_k (decompose --tolerance: its undercut is within
+                                  // the tolerance, tolerance_allowances()); nullptr = none
   Progress* progress = nullptr;  // info lines (grid size); the caller opens the stage (nullptr = silent)
 };
 

@@ -43,6 +43,8 @@ struct DecomposeOptions {
   double tolerance_fraction = 0.0;  // --tolerance: deviation allowed, x bbox diagonal (0 = exact blocks only, the
                                     // thesis's exact decomposition); see merge_within_tolerance()
   double tolerance_abs = std::numeric_limits<double>::infinity();  // --tolerance-abs: model units; the smaller wins
+  int tolerance_rounds = 3;         // within a tolerance: decompositions under allowances (tolerance_allowances())
+                                    // before the exact one; each takes them back where a block fails (>= 1)
   Progress* progress = nullptr; // stage progress (nullptr = silent)
 };
 
@@ -72,6 +74,8 @@ struct DecomposeResult {
                              // shape holding material under an undercut, within the tolerance)
   double deviation_bound = 0.0;  // largest deviation bound measured by the merges within the tolerance (model units)
   std::size_t num_tolerance_merges = 0;  // merges into milled shapes within the tolerance
+  std::size_t num_allowed_faces = 0;     // faces first allowed to lean past vertical (tolerance_allowances())
+  int num_tolerance_rounds = 0;          // decompositions under allowances that were milled and measured
   DecomposeTimings timings;
   // statistics
   std::size_t num_grown_boxes = 0;

@@ -39,6 +39,8 @@
 //! is covered by at least one box. Deterministic for any thread count.
 #pragma once
 
+#include <cstdint>
+
 #include <array>
 #include <limits>
 #include <vector>
@@ -73,6 +75,9 @@ struct GrowOptions {
                                     // given fields must have been computed with the same max_overhang_deg)
   double max_overhang_deg = 0.0;  // faces may lean this far past vertical and count as facing the axis (degrees,
                                   // [0, 45], see overhang_sine(); 0 = exact height fields)
+  const std::vector<std::uint8_t>* allowed_overhangs = nullptr;  // per face of the mesh passed: bit k set = the
+                                  // face counts as facing both +-e_k (decompose --tolerance: its undercut is within
+                                  // the tolerance, tolerance_allowances()); nullptr = none
 
   Progress* progress = nullptr;     // updates (faces covered / total) and warnings; nullptr = silent
 };

@@ -49,6 +49,7 @@ struct MergeResult {
   std::vector<Block> blocks;   // the blocks after merging, in the order of their first part
   std::size_t num_merges = 0;  // unions performed
   std::size_t num_candidates = 0;  // pairs whose union was computed exactly
+  std::vector<std::vector<std::size_t>> parts;  // per output block: the indices of the input blocks it unites, ascending
 };
 
 //! Merges adjacent blocks whose union is a valid block along the direction

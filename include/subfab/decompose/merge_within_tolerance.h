@@ -53,6 +53,8 @@ struct ToleranceMergeOptions {
   std::size_t max_region_faces = 20000;  // a merge whose deviation would be measured over more input faces is
                                   // not taken (the exact booleans of the measure grow with the region)
   int max_rounds = 64;            // rounds of pairwise merging
+  const std::vector<char>* filled = nullptr;  // per input block: 1 when it already sticks out of the solid
+                                  // (milled shapes of mill_within_tolerance()); nullptr: none does
   Progress* progress = nullptr;   // progress and info (nullptr: silent)
 };
 

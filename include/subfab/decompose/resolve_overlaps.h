@@ -35,6 +35,8 @@
 //! parts of faces of earlier boxes, each a subset of the pairwise case.
 #pragma once
 
+#include <cstdint>
+
 #include <cstddef>
 #include <vector>
 
@@ -49,6 +51,9 @@ struct ResolveOptions {
   int max_splits = 10000;        // cap on cycle-breaking splits (AlgorithmError beyond it)
   double max_overhang_deg = 0.0;  // faces may lean this far past vertical and count as facing the axis (degrees,
                                   // [0, 45], see overhang_sine(); 0 = exact height fields)
+  const std::vector<std::uint8_t>* allowed_overhangs = nullptr;  // per face of the mesh passed: bit k set = the
+                                  // face counts as facing both +-e_k (decompose --tolerance: its undercut is within
+                                  // the tolerance, tolerance_allowances()); nullptr = none
 
   Progress* progress = nullptr;  // stage reporting (nullptr = silent)
 };

@@ -24,6 +24,8 @@
 //! Deterministic.
 #pragma once
 
+#include <cstdint>
+
 #include <limits>
 #include <vector>
 
@@ -45,6 +47,9 @@ struct SnapShrinkOptions {
                                  // X, Y, Z in model units (Z along the axis; see box_fits_limits)
   double max_overhang_deg = 0.0;  // faces may lean this far past vertical and count as facing the axis (degrees,
                                   // [0, 45], see overhang_sine(); 0 = exact height fields)
+  const std::vector<std::uint8_t>* allowed_overhangs = nullptr;  // per face of the mesh passed: bit k set = the
+                                  // face counts as facing both +-e_k (decompose --tolerance: its undercut is within
+                                  // the tolerance, tolerance_allowances()); nullptr = none
   Progress* progress = nullptr;  // stage reporting (nullptr = silent)
 };
 

@@ -1,0 +1,60 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file mill_within_tolerance.h
+//! The blocks carved under tolerance allowances (tolerance_allowances.h)
+//! lean past vertical where the allowances let them; a 3-axis machine makes
+//! their MILLED SHAPES (milled_shape.h). This stage replaces every block by
+//! its milled shape and measures, exactly where it matters, whether the
+//! result honours the tolerance T (issue 17, point 2; the trade of thesis
+//! Section 4.3.5):
+//!   1. the milled shape is a closed 2-manifold and an exact height field
+//!      (a block that already is one stays as it is: it does not "stick
+//!      out" of the input);
+//!   2. it overlaps no other block (a bound from the boxes, then the exact
+//!      intersection volume <= collision_tolerance x the smaller, as
+//!      validate's overlap check);
+//!   3. the model then made, the input with every block that sticks out,
+//!      stays within T of the input near it: FillDeviationMeter (exact
+//!      booleans, bounded-error Hausdorff distances both ways), measured
+//!      value + error bound <= T.
+//! A block that fails any of them is reported; the caller takes the
+//! allowances back there and decomposes again (decompose()).
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "subfab/core/progress.h"
+#include "subfab/decompose/carve_blocks.h"
+#include "subfab/mesh/mesh.h"
+
+namespace subfab {
+
+//! Options of mill_within_tolerance().
+struct MillToleranceOptions {
+  double tolerance = 0.0;            // T, model units (> 0)
+  double error_fraction = 0.05;      // error bound of the distance measures, fraction of T, in (0, 1)
+  double collision_tolerance = 1e-6; // overlap volume allowed, fraction of the smaller block (validate's)
+  std::size_t max_region_faces = 0;  // > 0: a block whose deviation measure would span more input faces fails
+                                     // ("region too large"); 0 = no cap
+  Progress* progress = nullptr;      // updates per block and info (nullptr: silent)
+};
+
+//! Result of mill_within_tolerance().
+struct MillToleranceResult {
+  std::vector<Block> blocks;          // per input block: its milled shape (an exact height field), or the block
+  std::vector<char> filled;           // per block: 1 when the milled shape adds material (sticks out of the solid)
+  std::vector<std::string> failures;  // per block: why it fails the tolerance (empty: it passes)
+  std::vector<double> deviation;      // per block: the measured bound (measure + error), model units; 0 when exact
+  double max_deviation = 0.0;         // over the blocks that pass, model units
+  std::size_t num_failed() const;
+};
+
+//! Milled shapes of the carved blocks, measured against the tolerance (see
+//! the file comment). Parallel over blocks and pairs; deterministic.
+//! \param solid  the solid the blocks were carved from (canonical frame)
+//! \param blocks the carved blocks (carve_blocks() under allowances)
+MillToleranceResult mill_within_tolerance(const Mesh& solid, std::vector<Block> blocks,
+                                          const MillToleranceOptions& options);
+
+}  // namespace subfab

@@ -1,0 +1,47 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file tolerance_allowances.h
+//! Which faces may lean past vertical in a decomposition within a tolerance
+//! (issue 17, point 2; thesis Section 4.3.5 trades faithfulness for fewer
+//! blocks). A face f facing away from an axis direction d (unit n.d < 0)
+//! blocks every box for d that it meets: a 3-axis machine coming from +d
+//! cannot remove the material under it. Within a tolerance T that material
+//! may stay when it is thin: f is ALLOWED for d when the undercut depth
+//! under it (UndercutDepth: the free length along -d below the face,
+//! capped at the height limit and the model's extent, times |n.d|) is at
+//! most depth_fraction x T. The stages then treat f as facing d (the
+//! allowances travel as `allowed_overhangs` through field, grow, snap,
+//! resolve and carve, like --max-overhang's angle), the carved blocks are
+//! replaced by their milled shapes, and those are measured exactly
+//! (mill_within_tolerance()): an allowance is only a proposal.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "subfab/core/progress.h"
+#include "subfab/mesh/mesh.h"
+
+namespace subfab {
+
+//! Options of tolerance_allowances().
+struct ToleranceAllowanceOptions {
+  double tolerance = 0.0;       // T, model units (> 0)
+  double depth_fraction = 0.5;  // allow a face when its undercut depth <= this x T (unitless, > 0): below 1 it
+                                // leaves room for where the fill reaches past the face's plane (a heuristic;
+                                // the measure decides)
+  double max_height = std::numeric_limits<double>::infinity();  // fills stop at the block's base: depth cap, model units
+  Progress* progress = nullptr;  // info line (nullptr: silent)
+};
+
+//! Per face of `mesh`, bit k (k = 0, 1, 2) set when the face is allowed for
+//! the axis along e_k it faces away from (see the file comment). Faces that
+//! face every axis direction they meet get no bit. Deterministic and
+//! independent of the thread count.
+//! \param mesh closed, outward-oriented solid (canonical frame)
+std::vector<std::uint8_t> tolerance_allowances(const Mesh& mesh, const ToleranceAllowanceOptions& options);
+
+//! Number of faces with at least one allowance.
+std::size_t count_allowed_faces(const std::vector<std::uint8_t>& allowed);
+
+}  // namespace subfab

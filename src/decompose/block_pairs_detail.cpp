@@ -1,0 +1,60 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "decompose/block_pairs_detail.h"
+
+#include <CGAL/Polygon_mesh_processing/connected_components.h>
+#include <CGAL/Polygon_mesh_processing/corefinement.h>
+
+#include "geometry/deterministic_arena.h"
+
+namespace subfab::detail {
+
+namespace PMP = CGAL::Polygon_mesh_processing;
+
+bool boxes_touch(const BoundingBox& a, const BoundingBox& b) {
+  return (a.min.array() <= b.max.array()).all() && (b.min.array() <= a.max.array()).all();
+}
+
+std::vector<BoundingBox> block_boxes(const std::vector<Block>& blocks) {
+  std::vector<BoundingBox> boxes(blocks.size());
+  for (std::size_t i = 0; i < blocks.size(); ++i) boxes[i] = bounding_box(blocks[i].mesh);
+  return boxes;
+}
+
+std::vector<double> block_volumes(const std::vector<Block>& blocks) {
+  std::vector<double> volumes(blocks.size());
+  for (std::size_t i = 0; i < blocks.size(); ++i) volumes[i] = signed_volume(blocks[i].mesh);
+  return volumes;
+}
+
+bool within_limits(const BoundingBox& box, Axis axis, double max_height, const Vec3& machine_size) {
+  const Vec3 size = box.size();
+  const int k = axis_dimension(axis);
+  const double h = size[k];
+  const double a = size[(k + 1) % 3], b = size[(k + 2) % 3];
+  if (h > max_height || h > machine_size.z()) return false;
+  return (a <= machine_size.x() && b <= machine_size.y()) || (a <= machine_size.y() && b <= machine_size.x());
+}
+
+std::optional<Mesh> exact_block_union(const Mesh& a, const Mesh& b,
+                                      const std::function<bool(const ExactMesh&)>& accept, RoundingReport& rounding) {
+  if (count_degenerate_faces(a) > 0 || count_degenerate_faces(b) > 0) return std::nullopt;
+  warm_up_exact_booleans();
+  std::optional<Mesh> out;
+  DeterministicArena arena;
+  try {
+    ExactMesh ea = to_exact(a), eb = to_exact(b), u;
+    const auto np = CGAL::parameters::throw_on_self_intersection(true);
+    if (PMP::corefine_and_compute_union(ea, eb, u, np, np) && u.number_of_faces() > 0) {
+      auto fcc = u.add_property_map<ExactMesh::Face_index, std::size_t>("f:cc", 0).first;
+      if ((!accept || accept(u)) && PMP::connected_components(u, fcc) == 1) {
+        SuspendArena heap;
+        out = to_double(u, &rounding);
+      }
+    }
+  } catch (const std::exception&) {
+    // An exact boolean that fails means: do not merge this pair.
+  }
+  return out;
+}
+
+}  // namespace subfab::detail

@@ -1,0 +1,41 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file block_pairs_detail.h
+//! Private: what the two merges of touching blocks share (merge_blocks,
+//! thesis Section 4.3.4, and merge_within_tolerance): the per-block boxes
+//! and volumes a round starts from, the touch test that picks the pairs,
+//! the height and machine limits, and the exact union of two blocks.
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include "geometry/exact_mesh.h"
+#include "subfab/decompose/carve_blocks.h"
+
+namespace subfab::detail {
+
+//! Do the closed boxes a and b meet (touching counts)?
+bool boxes_touch(const BoundingBox& a, const BoundingBox& b);
+
+//! The bounding box of each block's mesh, in order.
+std::vector<BoundingBox> block_boxes(const std::vector<Block>& blocks);
+
+//! The signed volume of each block's mesh, in order.
+std::vector<double> block_volumes(const std::vector<Block>& blocks);
+
+//! Does a block with bounding box `box` milled along `axis` fit: its extent
+//! along the axis at most `max_height` and machine_size.z(), its other two
+//! extents within machine_size.x() and .y() (either way round)? Model units.
+bool within_limits(const BoundingBox& box, Axis axis, double max_height, const Vec3& machine_size);
+
+//! The union of blocks a and b, computed exactly (CGAL corefinement on the
+//! exact kernel, in a private DeterministicArena) and rounded to doubles
+//! (how that went in `rounding`), when it is non-empty, `accept` (if set)
+//! holds for the exact union, and it is one connected piece. Nullopt when
+//! either mesh has a degenerate face or the exact boolean fails or throws
+//! (then: do not merge the pair). `accept` runs inside the arena.
+std::optional<Mesh> exact_block_union(const Mesh& a, const Mesh& b,
+                                      const std::function<bool(const ExactMesh&)>& accept, RoundingReport& rounding);
+
+}  // namespace subfab::detail

@@ -1,0 +1,134 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "subfab/decompose/mill_within_tolerance.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include "subfab/core/error.h"
+#include "subfab/core/parallel.h"
+#include "subfab/geometry/axis.h"
+#include "subfab/validate/measure_fill_deviation.h"
+#include "subfab/validate/milled_shape.h"
+#include "subfab/validate/validate_decomposition.h"
+#include "validate/validate_booleans.h"
+
+namespace subfab {
+namespace {
+
+bool interiors_meet(const BoundingBox& a, const BoundingBox& b) {
+  return (a.min.array() < b.max.array()).all() && (b.min.array() < a.max.array()).all();
+}
+
+std::string format_length(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", v);
+  return buf;
+}
+
+}  // namespace
+
+std::size_t MillToleranceResult::num_failed() const {
+  return static_cast<std::size_t>(
+      std::count_if(failures.begin(), failures.end(), [](const std::string& f) { return !f.empty(); }));
+}
+
+MillToleranceResult mill_within_tolerance(const Mesh& solid, std::vector<Block> blocks,
+                                          const MillToleranceOptions& options) {
+  if (!(options.tolerance > 0) || !std::isfinite(options.tolerance))
+    throw InvalidArgumentError("mill_within_tolerance: the tolerance must be positive");
+  if (!(options.error_fraction > 0 && options.error_fraction < 1))
+    throw InvalidArgumentError("mill_within_tolerance: error_fraction must be in (0, 1)");
+  Progress* progress = options.progress;
+  const std::size_t n = blocks.size();
+  MillToleranceResult r;
+  r.filled.assign(n, 0);
+  r.failures.assign(n, std::string());
+  r.deviation.assign(n, 0.0);
+
+  // 1. milled shapes
+  std::atomic<std::size_t> done{0};
+  parallel_for(0, n, [&](std::size_t i) {
+    const Vec3 d = axis_direction(blocks[i].axis);
+    try {
+      MilledShape m = milled_shape(blocks[i].mesh, d);
+      if (!m.is_block) {
+        if (!check_closed_solid(m.mesh).ok() || !is_height_field(m.mesh, d))
+          r.failures[i] = "its milled shape is not a closed 2-manifold height field";
+        else {
+          blocks[i].mesh = std::move(m.mesh);
+          r.filled[i] = 1;
+        }
+      }
+    } catch (const std::exception& e) {
+      r.failures[i] = std::string("its milled shape could not be computed: ") + e.what();
+    }
+    if (progress) progress->update(++done, 2 * n);
+  });
+
+  // 2. collisions of the filled blocks with every other block
+  std::vector<BoundingBox> boxes(n);
+  std::vector<double> volumes(n);
+  parallel_for(0, n, [&](std::size_t i) {
+    boxes[i] = bounding_box(blocks[i].mesh);
+    volumes[i] = signed_volume(blocks[i].mesh);
+  });
+  std::vector<std::pair<std::size_t, std::size_t>> pairs;
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 1; j < n; ++j)
+      if ((r.filled[i] || r.filled[j]) && interiors_meet(boxes[i], boxes[j])) pairs.emplace_back(i, j);
+  std::vector<char> collides(pairs.size(), 0);
+  parallel_for(0, pairs.size(), [&](std::size_t p) {
+    const auto [i, j] = pairs[p];
+    const double allowed = options.collision_tolerance * std::min(volumes[i], volumes[j]);
+    if (overlap_volume_bound(blocks[i].mesh, blocks[j].mesh, Eigen::Matrix3d::Identity()) <= allowed) return;
+    try {
+      collides[p] = detail::exact_blocks_overlap(blocks[i].mesh, blocks[j].mesh) > allowed ? 1 : 0;
+    } catch (const std::exception&) {
+      collides[p] = 1;
+    }
+  });
+  for (std::size_t p = 0; p < pairs.size(); ++p) {
+    if (!collides[p]) continue;
+    const auto [i, j] = pairs[p];
+    for (const auto& [a, b] : {std::pair{i, j}, std::pair{j, i}})
+      if (r.filled[a] && r.failures[a].empty())
+        r.failures[a] = "its milled shape overlaps block " + std::to_string(b + 1);
+  }
+
+  // 3. the deviation near every filled block, the others that stick out included
+  const FillDeviationMeter meter(solid);
+  std::vector<const Mesh*> all_filled;
+  for (std::size_t i = 0; i < n; ++i)
+    if (r.filled[i]) all_filled.push_back(&blocks[i].mesh);
+  const double error = options.error_fraction * options.tolerance;
+  parallel_for(0, n, [&](std::size_t i) {
+    if (r.filled[i] && r.failures[i].empty()) {
+      std::vector<const Mesh*> others;
+      for (const Mesh* m : all_filled)
+        if (m != &blocks[i].mesh) others.push_back(m);
+      const FillDeviation dev = meter.measure(
+          blocks[i].mesh, others, {.reach = options.tolerance, .error = error, .max_faces = options.max_region_faces});
+      if (!dev.failure.empty())
+        r.failures[i] = "its deviation could not be measured: " + dev.failure;
+      else if (dev.bound() > options.tolerance)
+        r.failures[i] = "its milled shape deviates up to " + format_length(dev.bound()) + " > the tolerance " +
+                        format_length(options.tolerance);
+      else
+        r.deviation[i] = dev.bound();
+    }
+    if (progress) progress->update(++done, 2 * n);
+  });
+  for (std::size_t i = 0; i < n; ++i)
+    if (r.failures[i].empty()) r.max_deviation = std::max(r.max_deviation, r.deviation[i]);
+  r.blocks = std::move(blocks);
+  if (progress)
+    progress->info(std::to_string(std::count(r.filled.begin(), r.filled.end(), 1)) + " of " + std::to_string(n) +
+                   " blocks milled with filled undercuts, " + std::to_string(r.num_failed()) +
+                   " beyond the tolerance");
+  return r;
+}
+
+}  // namespace subfab
