@@ -265,6 +265,39 @@ std::size_t revoke_allowances(const Mesh& solid, const MillToleranceResult& mill
   return revoked;
 }
 
+//! Stage 7 of decompose(): exact merges of touching blocks (4.3.4
+//! post-processing) into result.blocks; `filled` (per block, may be empty)
+//! follows the merges.
+void merge_stage(std::vector<Block> blocks, std::vector<char>& filled, const DecomposeOptions& options,
+                 DecomposeResult& result) {
+  Progress* progress = options.progress;
+  const Vec3 machine = options.machine ? *options.machine : Vec3::Constant(std::numeric_limits<double>::infinity());
+  const double overhang = options.max_overhang_deg;
+  {
+    StageScope stage(progress, "merge");
+    const auto t = Clock::now();
+    if (options.merge) {
+      MergeOptions mo;
+      mo.max_height = result.max_height;
+      mo.machine_size = machine;
+      mo.max_overhang_deg = overhang;
+      mo.progress = progress;
+      MergeResult merged = merge_blocks(std::move(blocks), mo);
+      result.blocks = std::move(merged.blocks);
+      result.num_merges = merged.num_merges;
+      if (!filled.empty()) {  // a union sticks out when one of its parts does
+        std::vector<char> merged_filled(result.blocks.size(), 0);
+        for (std::size_t b = 0; b < merged.parts.size(); ++b)
+          for (std::size_t part : merged.parts[b]) merged_filled[b] = static_cast<char>(merged_filled[b] | filled[part]);
+        filled = std::move(merged_filled);
+      }
+    } else {
+      result.blocks = std::move(blocks);
+    }
+    result.timings.carve += seconds_since(t);
+  }
+}
+
 }  // namespace
 
 DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
@@ -277,7 +310,6 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
   result.max_height = std::min(options.max_height_fraction * diagonal, options.max_height_abs);
   result.max_overhang_deg = options.max_overhang_deg;
   result.tolerance = std::min(options.tolerance_fraction * diagonal, options.tolerance_abs);
-  const double overhang = options.max_overhang_deg;
   const Vec3 machine = options.machine ? *options.machine : Vec3::Constant(std::numeric_limits<double>::infinity());
 
   // 1. orient (4.3.1)
@@ -335,6 +367,7 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
   //    measured; where one fails, its allowances are taken back and the
   //    stages run again (the last round without any: the exact path).
   const Mesh solid = result.canonical;  // before grow's local refinement
+  const DecomposeResult base = result;  // before the stages (within a tolerance the exact path is made too)
   std::vector<Block> blocks;
   std::vector<char> filled;
   if (result.tolerance > 0) {
@@ -384,28 +417,34 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
   }
 
   // 7. merge (4.3.4 post-processing)
-  {
-    StageScope stage(progress, "merge");
-    const auto t = Clock::now();
-    if (options.merge) {
-      MergeOptions mo;
-      mo.max_height = result.max_height;
-      mo.machine_size = machine;
-      mo.max_overhang_deg = overhang;
-      mo.progress = progress;
-      MergeResult merged = merge_blocks(std::move(blocks), mo);
-      result.blocks = std::move(merged.blocks);
-      result.num_merges = merged.num_merges;
-      if (!filled.empty()) {  // a union sticks out when one of its parts does
-        std::vector<char> merged_filled(result.blocks.size(), 0);
-        for (std::size_t b = 0; b < merged.parts.size(); ++b)
-          for (std::size_t part : merged.parts[b]) merged_filled[b] = static_cast<char>(merged_filled[b] | filled[part]);
-        filled = std::move(merged_filled);
-      }
+  merge_stage(std::move(blocks), filled, options, result);
+  // Within a tolerance, the allowances can also cost blocks (they change the
+  // cover): the exact decomposition is made too and kept when it has no
+  // more blocks.
+  if (result.tolerance > 0 && !filled.empty()) {
+    DecomposeResult exact = base;
+    std::vector<char> none;
+    merge_stage(carve_stages(solid, nullptr, input, options, exact), none, options, exact);
+    if (progress)
+      progress->info("exact decomposition: " + std::to_string(exact.blocks.size()) + " blocks, within the tolerance: " +
+                     std::to_string(result.blocks.size()));
+    DecomposeTimings& t = exact.timings;
+    const DecomposeTimings& a = result.timings;
+    const DecomposeTimings& b = base.timings;
+    t.field += a.field - b.field;
+    t.grow += a.grow - b.grow;
+    t.cover += a.cover - b.cover;
+    t.resolve += a.resolve - b.resolve;
+    t.carve += a.carve - b.carve;
+    t.tolerance += a.tolerance - b.tolerance;
+    if (exact.blocks.size() <= result.blocks.size()) {
+      exact.num_allowed_faces = result.num_allowed_faces;
+      exact.num_tolerance_rounds = result.num_tolerance_rounds;
+      result = std::move(exact);
+      filled.clear();
     } else {
-      result.blocks = std::move(blocks);
+      result.timings = t;
     }
-    result.timings.carve += seconds_since(t);
   }
   // 8. fewer blocks within the tolerance (issue 17): merges into milled shapes
   if (result.tolerance > 0) {
