@@ -47,7 +47,7 @@ nlohmann::ordered_json to_json(const HexmeshArgs& args, const Mesh& input, const
   j["tubes"] = r.structure_info.num_tubes;
   j["structure_hexahedra"] = r.structure.num_hexes();
   j["subdivisions"] = r.subdivisions;
-  j["resolution_control"] = "not implemented (D.5); --no-scaling has no effect";
+  j["resolution_control"] = "not implemented (D.5)";
   j["vertices"] = r.mesh.num_vertices();
   j["hexahedra"] = r.mesh.num_hexes();
   j["boundary_quads"] = r.check.num_boundary_quads;
@@ -74,6 +74,11 @@ nlohmann::ordered_json to_json(const HexmeshArgs& args, const Mesh& input, const
 }
 
 int run_hexmesh(const HexmeshArgs& args) {
+  if (args.no_scaling) {  // refused, not silently ignored: without D.5 there is no scaling to skip
+    std::cerr << "error: --no-scaling: resolution control (D.5) is not implemented yet, so there is nothing to "
+                 "skip; run without --no-scaling (the output is the same as it would be)\n";
+    return kExitBadInput;
+  }
   ConsoleProgress progress(std::cerr, args.common.quiet, stderr_is_terminal());
   const auto start = std::chrono::steady_clock::now();
   const Mesh mesh = read_closed_solid(args.mesh, progress);  // IoError / InvalidMeshError: exit 2
@@ -143,7 +148,7 @@ void add_hexmesh_options(CLI::App& sub, HexmeshArgs& args) {
                  "neighbours...' per node); computed (mean curvature flow + automatic clean-up) when absent")
       ->check(CLI::ExistingFile);
   sub.add_flag("--no-scaling", args.no_scaling,
-               "Skip resolution control (thesis D.5); currently always skipped: not implemented yet");
+               "Skip resolution control (thesis D.5); refused (exit 2) until D.5 is implemented");
   sub.add_option("--subdivisions", args.subdivisions,
                  "Regular 2x2x2 splits after pillowing (default: automatic, the most that stays under --max-hexes)")
       ->check(CLI::Range(0, 6));

@@ -58,6 +58,16 @@ TEST(HexmeshCli, BadSkeletonFileExitsTwoWithTheLine) {
   EXPECT_NE(n.output.find("nocount.skel:2: missing node count"), std::string::npos) << n.output;
 }
 
+TEST(HexmeshCli, NoScalingIsRefusedUntilResolutionControlExists) {
+  const fs::path dir = test::temp_dir();
+  const fs::path input = dir / "capsule.off";
+  write_mesh(test::capsule(), input);
+  const auto r = run_subfab("hexmesh " + quoted(input) + " -o " + quoted(dir / "o") + " --no-scaling");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("resolution control (D.5) is not implemented yet"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "o" / "hexmesh.mesh"));
+}
+
 TEST(HexmeshCli, OpenMeshExitsTwo) {
   const fs::path dir = test::temp_dir();
   const auto r = run_subfab("hexmesh " + quoted(test::data_path("teapot.obj")) + " -o " + quoted(dir / "o"));
