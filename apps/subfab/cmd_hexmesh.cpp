@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //! `subfab hexmesh MESH -o OUTDIR [options]`: skeleton-driven all-hexahedral
 //! mesh of a tubular solid (thesis Appendix D). Writes hexmesh.mesh (Medit),
-//! hexmesh.vtk (legacy VTK with the scaled Jacobian per cell), hexmesh.json
-//! and skeleton.skel. Exit 2 for an unusable solid or skeleton file, 3 when
-//! the mesh is not valid (inverted element or non-conforming).
+//! hexmesh.vtk (legacy VTK with the scaled Jacobian per cell), hexmesh.json,
+//! skeleton.skel, preview.png and (unless --no-view) view.html. Exit 2 for an
+//! unusable solid or skeleton file, 3 when the mesh is not valid (inverted element or non-conforming).
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -19,6 +19,7 @@
 #include "subfab/hex/read_skeleton.h"
 #include "subfab/hex/write_hex_mesh.h"
 #include "subfab/hex/write_skeleton.h"
+#include "subfab/view/write_hex_mesh_view.h"
 
 namespace subfab::cli {
 namespace {
@@ -28,6 +29,7 @@ struct HexmeshArgs {
   std::string outdir;
   std::string skeleton;
   bool no_scaling = false;
+  bool no_view = false;
   int subdivisions = -1;
   std::size_t max_hexes = HexMeshOptions{}.max_hexes;
   CommonOptions common;
@@ -73,6 +75,17 @@ nlohmann::ordered_json to_json(const HexmeshArgs& args, const Mesh& input, const
   return j;
 }
 
+//! The mesh, its qualities and the structure as the view module takes them.
+HexMeshView hex_mesh_view(const HexmeshArgs& args, const Mesh& input, const HexMeshResult& r) {
+  HexMeshView view;
+  view.mesh = {r.mesh.vertices, r.mesh.hexes};
+  view.scaled_jacobian = r.scaled_jacobian;
+  view.structure = {r.structure.vertices, r.structure.hexes};
+  view.input = &input;
+  view.input_name = std::filesystem::path(args.mesh).filename().string();
+  return view;
+}
+
 int run_hexmesh(const HexmeshArgs& args) {
   if (args.no_scaling) {  // refused, not silently ignored: without D.5 there is no scaling to skip
     std::cerr << "error: --no-scaling: resolution control (D.5) is not implemented yet, so there is nothing to "
@@ -110,10 +123,18 @@ int run_hexmesh(const HexmeshArgs& args) {
     write_medit_hex_mesh(result.mesh, out / "hexmesh.mesh");
     write_vtk_hex_mesh(result.mesh, out / "hexmesh.vtk", result.scaled_jacobian);
     write_skeleton(result.skeleton, out / "skeleton.skel");
+    write_hex_mesh_preview(hex_mesh_view(args, mesh, result), out / "preview.png");
     timings.emplace_back("write", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     std::ofstream json(out / "hexmesh.json");
     json << to_json(args, mesh, result, timings).dump(2) << "\n";
     if (!json) throw IoError("cannot write " + (out / "hexmesh.json").string());
+  }
+  if (args.no_view) {
+    remove_stale_page(out / "view.html");
+  } else {
+    StageScope stage(&progress, "view");
+    write_view_or_warn(progress, out / "view.html",
+                       [&] { write_hex_mesh_view(hex_mesh_view(args, mesh, result), out / "view.html"); });
   }
   if (!args.common.quiet) progress.print_timings(std::cerr);
   if (args.common.json) {
@@ -149,6 +170,8 @@ void add_hexmesh_options(CLI::App& sub, HexmeshArgs& args) {
       ->check(CLI::ExistingFile);
   sub.add_flag("--no-scaling", args.no_scaling,
                "Skip resolution control (thesis D.5); refused (exit 2) until D.5 is implemented");
+  sub.add_flag("--no-view", args.no_view,
+               "Do not write OUTDIR/view.html (the cells coloured by scaled Jacobian in 3D in a browser)");
   sub.add_option("--subdivisions", args.subdivisions,
                  "Regular 2x2x2 splits after pillowing (default: automatic, the most that stays under --max-hexes)")
       ->check(CLI::Range(0, 6));
@@ -162,7 +185,8 @@ const RegisterCommand kRegisterHexmesh(make_command<HexmeshArgs>(
     "Skeleton-driven all-hexahedral mesh of a tubular closed solid (thesis Appendix D): computes or reads a "
     "curve-skeleton, resamples it, builds a conforming structure of cubes and tubes, pads, subdivides, "
     "projects onto the surface and optimises the scaled Jacobian. Writes hexmesh.mesh (Medit), hexmesh.vtk "
-    "(VTK, scaled Jacobian per cell), hexmesh.json and skeleton.skel. Exit 2 if the input is not a closed "
+    "(VTK, scaled Jacobian per cell), hexmesh.json, skeleton.skel, preview.png (boundary coloured by quality "
+    "beside the tubular structure) and view.html (3D view in a browser; --no-view to skip). Exit 2 if the input is not a closed "
     "solid or the skeleton file is malformed, 3 if the mesh has an inverted element.",
     add_hexmesh_options, run_hexmesh));
 

@@ -116,11 +116,15 @@ struct Projection {
   }
 };
 
-std::string png_data_uri(Canvas canvas) {
+std::vector<std::uint8_t> outlined_png(Canvas canvas) {
   canvas.outline();
   RgbImage image(canvas.width, canvas.height);
   image.pixels = std::move(canvas.rgb);
-  const std::vector<std::uint8_t> png = encode_png(image);
+  return encode_png(image);
+}
+
+std::string png_data_uri(Canvas canvas) {
+  const std::vector<std::uint8_t> png = outlined_png(std::move(canvas));
   return "data:image/png;base64," + encode_base64(png.data(), png.size());
 }
 
@@ -134,11 +138,16 @@ Vec3 mirrored(const Vec3& eye, int m) {
 
 }  // namespace
 
-std::string render_picture(const std::vector<PictureLayer>& layers, const PictureView& view) {
+std::vector<std::uint8_t> render_png(const std::vector<PictureLayer>& layers, const PictureView& view) {
   const Projection projection(view);
   Canvas canvas(view.width, view.height);
   for (std::size_t l = 0; l < layers.size(); ++l) projection.draw(canvas, *layers[l].mesh, int(l), layers[l].color);
-  return png_data_uri(std::move(canvas));
+  return outlined_png(std::move(canvas));
+}
+
+std::string render_picture(const std::vector<PictureLayer>& layers, const PictureView& view) {
+  const std::vector<std::uint8_t> png = render_png(layers, view);
+  return "data:image/png;base64," + encode_base64(png.data(), png.size());
 }
 
 struct AssemblyPictures::Views {

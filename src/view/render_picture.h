@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //! \file render_picture.h
-//! Private: small pictures of blocks for assembly.html, drawn here (an
-//! orthographic z-buffered rasteriser, flat two-sided shading, a dark outline
-//! around each mesh) and embedded as PNG data URIs, so the sheet prints
-//! without a script.
+//! Private: pictures drawn here (an orthographic z-buffered rasteriser, flat
+//! two-sided shading, a dark outline around each mesh): the small pictures of
+//! blocks assembly.html embeds as PNG data URIs (so the sheet prints without
+//! a script), and hexmesh's preview.png.
 #pragma once
 
 #include <memory>
@@ -27,6 +27,9 @@ struct PictureView {
   BoundingBox frame;                           // what must fit in the picture (input frame)
   int width = 220, height = 220;               // pixels
 };
+
+//! Renders the layers (layer l drawn as outline region l); returns the PNG bytes.
+std::vector<std::uint8_t> render_png(const std::vector<PictureLayer>& layers, const PictureView& view);
 
 //! Renders the layers; returns "data:image/png;base64,...".
 std::string render_picture(const std::vector<PictureLayer>& layers, const PictureView& view);

@@ -10,9 +10,17 @@
 // The part of the address after '#' may hold, separated by '&':
 //   explode=N    the explode slider at N % (0..100)
 //   eye=X,Y,Z    the initial view direction (from the model to the eye)
-//   check        each object in the flat colour idColor(i), fully exploded
-//                unless explode= says otherwise, on black, without the
-//                panel (what the browser test reads back)
+//   check        each object in the flat colour idColor(i) (hexahedral
+//                cells: in their own colours, unlit), fully exploded unless
+//                explode= says otherwise, on black, without the panel (what
+//                the browser test reads back)
+//   cut=A,T      hexahedral cells: keep those whose centre is at most T %
+//                along axis A (x, y or z) of their extent
+//   filter=T     hexahedral cells: keep those whose value is at most T % of
+//                the way from the smallest to the largest value
+// Hexahedral cells (an object with `hex`) are drawn as the faces of the kept
+// cells that no other kept cell covers, so a cut or a filter shows the
+// inside cell by cell; a click names the cell and its value.
 (function () {
   'use strict';
   var status = (window.subfabStatus = { frames: 0, errors: [], objects: 0, ready: false });
@@ -110,11 +118,107 @@
   sky.position.set(0.2, 1, 0.4);
   scene.add(sky);
 
-  var solids = [], ghosts = [];
+  // Hexahedral cells: the faces of the kept cells that no kept cell covers.
+  var HEX_FACES = [[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7]];
+  var HEX_EDGES = [0, 1, 1, 2, 2, 3, 3, 0, 4, 5, 5, 6, 6, 7, 7, 4, 0, 4, 1, 5, 2, 6, 3, 7];
+  function HexCells(h) {
+    this.points = float32(h.points);
+    this.cells = uint32(h.cells);
+    this.neighbors = uint32(h.neighbors);
+    this.colors = uint32(h.colors);
+    this.values = float32(h.values);
+    this.label = h.label;
+    var n = (this.n = this.values.length);
+    this.centre = new Float32Array(3 * n);
+    this.lo = [Infinity, Infinity, Infinity];
+    this.hi = [-Infinity, -Infinity, -Infinity];
+    this.vmin = Infinity;
+    this.vmax = -Infinity;
+    for (var c = 0; c < n; ++c) {
+      for (var k = 0; k < 3; ++k) {
+        var sum = 0;
+        for (var j = 0; j < 8; ++j) sum += this.points[3 * this.cells[8 * c + j] + k];
+        this.centre[3 * c + k] = sum / 8;
+        this.lo[k] = Math.min(this.lo[k], sum / 8);
+        this.hi[k] = Math.max(this.hi[k], sum / 8);
+      }
+      this.vmin = Math.min(this.vmin, this.values[c]);
+      this.vmax = Math.max(this.vmax, this.values[c]);
+    }
+    this.kept = new Uint8Array(n);
+    this.shown = 0;
+    this.faceCell = new Uint32Array(0);
+  }
+  // Keeps the cells whose centre is at most cutT (0..1) along axis cutAxis
+  // of the centres' extent and whose value is at most valueMax; returns the geometry.
+  HexCells.prototype.geometry = function (cutAxis, cutT, valueMax) {
+    var n = this.n, cut = this.lo[cutAxis] + (this.hi[cutAxis] - this.lo[cutAxis]) * cutT, faces = 0, c, f;
+    this.shown = 0;
+    for (c = 0; c < n; ++c) {
+      this.kept[c] = this.centre[3 * c + cutAxis] <= cut * (1 + 1e-7) + 1e-12 && this.values[c] <= valueMax ? 1 : 0;
+      this.shown += this.kept[c];
+    }
+    for (c = 0; c < n; ++c) {
+      if (!this.kept[c]) continue;
+      for (f = 0; f < 6; ++f) {
+        var d = this.neighbors[6 * c + f];
+        if (d === 0xffffffff || !this.kept[d]) ++faces;
+      }
+    }
+    var position = new Float32Array(18 * faces), colour = new Float32Array(18 * faces), at = 0;
+    this.faceCell = new Uint32Array(2 * faces);
+    for (c = 0; c < n; ++c) {
+      if (!this.kept[c]) continue;
+      var rgb = this.colors[c], r = ((rgb >> 16) & 255) / 255, g = ((rgb >> 8) & 255) / 255, b = (rgb & 255) / 255;
+      for (f = 0; f < 6; ++f) {
+        var e = this.neighbors[6 * c + f];
+        if (e !== 0xffffffff && this.kept[e]) continue;
+        this.faceCell[at / 9] = this.faceCell[at / 9 + 1] = c;
+        [0, 1, 2, 0, 2, 3].forEach(function (corner) {
+          var v = this.cells[8 * c + HEX_FACES[f][corner]];
+          position[at] = this.points[3 * v];
+          position[at + 1] = this.points[3 * v + 1];
+          position[at + 2] = this.points[3 * v + 2];
+          colour[at] = r;
+          colour[at + 1] = g;
+          colour[at + 2] = b;
+          at += 3;
+        }, this);
+      }
+    }
+    var geometry = new THREE.BufferGeometry();
+    geometry.setAttribute('position', new THREE.BufferAttribute(position, 3));
+    geometry.setAttribute('color', new THREE.BufferAttribute(colour, 3));
+    geometry.computeBoundingSphere();
+    return geometry;
+  };
+  // The twelve edges of cell c, as line segments.
+  HexCells.prototype.edges = function (c) {
+    var p = new Float32Array(72);
+    for (var i = 0; i < 24; ++i)
+      for (var k = 0; k < 3; ++k) p[3 * i + k] = this.points[3 * this.cells[8 * c + HEX_EDGES[i]] + k];
+    var geometry = new THREE.BufferGeometry();
+    geometry.setAttribute('position', new THREE.BufferAttribute(p, 3));
+    return geometry;
+  };
+
+  var solids = [], ghosts = [], hexes = [];
   data.objects.forEach(function (o, i) {
     var ghost = o.style === 'ghost';
     if (check && ghost) return;
     var material;
+    if (o.hex) {
+      material = check ? new THREE.MeshBasicMaterial({ vertexColors: THREE.VertexColors, side: THREE.DoubleSide })
+                       : new THREE.MeshPhongMaterial({ vertexColors: THREE.VertexColors, flatShading: true,
+                                                       side: THREE.DoubleSide, specular: 0, shininess: 0 });
+      var cells = new HexCells(o.hex);
+      var hexMesh = new THREE.Mesh(cells.geometry(0, 1, Infinity), material);
+      hexMesh.userData = { object: o, cells: cells, offset: new THREE.Vector3(o.offset[0], o.offset[1], o.offset[2]) };
+      solids.push(hexMesh);
+      hexes.push(hexMesh);
+      scene.add(hexMesh);
+      return;
+    }
     if (check) {
       material = new THREE.MeshBasicMaterial({ color: color(idColor(solids.length)), side: THREE.DoubleSide });
     } else if (ghost) {
@@ -140,6 +244,41 @@
   });
   status.objects = solids.length;
 
+  // Cut and filter of hexahedral cells.
+  var cutAxis = document.getElementById('cut-axis'), cutSlider = document.getElementById('cut');
+  var filterSlider = document.getElementById('filter');
+  if (typeof options.cut === 'string') {
+    var cutParts = options.cut.split(',');
+    cutAxis.value = cutParts[0];
+    cutSlider.value = Number(cutParts[1]);
+  }
+  if (options.filter !== undefined) filterSlider.value = Number(options.filter);
+  function fmt(x) { return Math.abs(x) >= 1e4 || (x !== 0 && Math.abs(x) < 1e-3) ? x.toExponential(2) : String(+x.toFixed(3)); }
+  function cutCells() {
+    if (hexes.length === 0) return;
+    var axis = Math.max(0, ['x', 'y', 'z'].indexOf(cutAxis.value)), t = cutSlider.value / 100, shown = 0, total = 0;
+    hexes.forEach(function (m) {
+      var cells = m.userData.cells, valueMax = cells.vmin + (cells.vmax - cells.vmin) * filterSlider.value / 100;
+      if (filterSlider.value >= 100) valueMax = Infinity;
+      m.geometry.dispose();
+      m.geometry = cells.geometry(axis, t, valueMax);
+      shown += cells.shown;
+      total += cells.n;
+      document.getElementById('filter-label').textContent = cells.label;
+      document.getElementById('filter-text').textContent = fmt(Math.min(valueMax, cells.vmax));
+      var lo = cells.lo[axis], hi = cells.hi[axis];
+      document.getElementById('cut-text').textContent = '(cell centres up to ' + fmt(lo + (hi - lo) * t) + ')';
+    });
+    document.getElementById('cells-count').textContent = shown + ' of ' + total + ' cells shown';
+    status.cellsShown = shown;
+    if (picked && picked.userData.cells) showPicked(null);
+    requestRender();
+  }
+  if (hexes.length) {
+    document.getElementById('cells-row').style.display = 'block';
+    [cutAxis, cutSlider, filterSlider].forEach(function (el) { el.addEventListener('input', cutCells); });
+  }
+
   // Explode slider.
   var slider = document.getElementById('explode');
   if (options.explode !== undefined) slider.value = Number(options.explode);
@@ -157,6 +296,8 @@
     requestRender();
   });
   if (check) document.getElementById('panel').style.display = 'none';
+  if (data.objects.every(function (o) { return !o.offset[0] && !o.offset[1] && !o.offset[2]; }))
+    document.getElementById('explode-row').style.display = 'none';
 
   // Camera: orbit around a target (spherical angles), y up.
   var eyeOption = typeof options.eye === 'string' ? options.eye.split(',').map(Number) : null;
@@ -238,21 +379,42 @@
   }, { passive: false });
 
   // Click: the object under the pointer, highlighted, its lines in the info box.
-  var raycaster = new THREE.Raycaster(), picked = null;
+  // A click on cells: the cell outlined, its number and value shown.
+  var raycaster = new THREE.Raycaster(), picked = null, outline = null;
   function pick(ev) {
     var rect = canvas.getBoundingClientRect();
     var ndc = new THREE.Vector2((ev.clientX - rect.left) / rect.width * 2 - 1, -(ev.clientY - rect.top) / rect.height * 2 + 1);
     raycaster.setFromCamera(ndc, camera);
     var hits = raycaster.intersectObjects(solids.filter(function (m) { return m.visible; }));
-    if (picked && picked.material.emissive) picked.material.emissive.setRGB(0, 0, 0);
-    picked = hits.length ? hits[0].object : null;
+    showPicked(hits.length ? hits[0] : null);
+  }
+  function showPicked(hit) {
+    if (picked && picked.material.emissive && !picked.userData.cells) picked.material.emissive.setRGB(0, 0, 0);
+    if (outline) {
+      scene.remove(outline);
+      outline.geometry.dispose();
+      outline = null;
+    }
+    picked = hit ? hit.object : null;
     var box = document.getElementById('info');
     box.textContent = '';
     if (picked) {
-      if (picked.material.emissive) picked.material.emissive.setRGB(0.25, 0.25, 0.25);
       var o = picked.userData.object, h = document.createElement('h2'), table = document.createElement('table');
+      var lines = o.info;
       h.textContent = o.name;
-      o.info.forEach(function (line) {
+      if (picked.userData.cells) {
+        var cells = picked.userData.cells, c = cells.faceCell[hit.faceIndex];
+        outline = new THREE.LineSegments(cells.edges(c), new THREE.LineBasicMaterial({ color: 0x000000 }));
+        outline.position.copy(picked.position);
+        scene.add(outline);
+        h.textContent = 'cell ' + c;
+        lines = [['Cell', c + ' (from 0, as in the .vtk file; the .mesh file counts from 1)'],
+                 [cells.label, cells.values[c].toFixed(3)]].concat(o.info);
+        status.pickedCell = c;
+      } else if (picked.material.emissive) {
+        picked.material.emissive.setRGB(0.25, 0.25, 0.25);
+      }
+      lines.forEach(function (line) {
         var tr = table.insertRow(), th = document.createElement('th');
         th.textContent = line[0];
         tr.appendChild(th);
@@ -278,6 +440,7 @@
   }
 
   resize();
+  cutCells();
   explode();
   fit();
   status.ready = true;

@@ -46,6 +46,35 @@ Json polygon_json(const ViewPolygon& polygon) {
   return {{"loops", loops}, {"p2", detail::base64_float32(p2)}, {"p3", detail::base64_float32(flat(p3))}};
 }
 
+Json hex_json(const ViewHexCells& hex) {
+  const std::size_t n = hex.cells.size();
+  if (hex.colors.size() != n || hex.values.size() != n || (!hex.neighbors.empty() && hex.neighbors.size() != n))
+    throw InvalidArgumentError("view: hexahedral cells need one colour, one value and one neighbour set per cell");
+  const std::vector<std::array<int, 6>> computed = hex.neighbors.empty() ? hex_face_neighbors(hex.cells)
+                                                                         : std::vector<std::array<int, 6>>{};
+  const std::vector<std::array<int, 6>>& neighbors = hex.neighbors.empty() ? computed : hex.neighbors;
+  std::vector<std::uint32_t> cells, colors, across;
+  std::vector<float> values;
+  cells.reserve(8 * n);
+  across.reserve(6 * n);
+  for (std::size_t c = 0; c < n; ++c) {
+    for (int v : hex.cells[c]) {
+      if (v < 0 || std::size_t(v) >= hex.points.size())
+        throw InvalidArgumentError("view: hexahedron " + std::to_string(c) + " has a corner out of range");
+      cells.push_back(static_cast<std::uint32_t>(v));
+    }
+    for (int d : neighbors[c]) across.push_back(static_cast<std::uint32_t>(d));  // -1 -> 0xffffffff
+    colors.push_back(static_cast<std::uint32_t>((hex.colors[c][0] << 16) | (hex.colors[c][1] << 8) | hex.colors[c][2]));
+    values.push_back(static_cast<float>(hex.values[c]));
+  }
+  return {{"points", detail::base64_float32(flat(hex.points))},
+          {"cells", detail::base64_uint32(cells)},
+          {"neighbors", detail::base64_uint32(across)},
+          {"colors", detail::base64_uint32(colors)},
+          {"values", detail::base64_float32(values)},
+          {"label", hex.value_label}};
+}
+
 Json object_json(const ViewObject& o) {
   Json j;
   j["name"] = o.name;
@@ -55,7 +84,9 @@ Json object_json(const ViewObject& o) {
   Json info = Json::array();
   for (const auto& [label, value] : o.info) info.push_back(Json::array({label, value}));
   j["info"] = info;
-  if (!o.polygons.empty()) {
+  if (!o.hex.cells.empty()) {
+    j["hex"] = hex_json(o.hex);
+  } else if (!o.polygons.empty()) {
     Json polygons = Json::array();
     for (const ViewPolygon& p : o.polygons) polygons.push_back(polygon_json(p));
     j["polygons"] = polygons;
@@ -136,7 +167,14 @@ std::string view_html(const ViewScene& scene, const std::string& three_js) {
     << "<div class=\"sub\">" << escape_html(scene.subtitle) << "</div>\n<div class=\"legend\">";
   for (const ViewLegendEntry& e : scene.legend)
     h << "<div><span style=\"background:" << to_hex(e.color) << "\"></span>" << escape_html(e.label) << "</div>";
-  h << "</div>\n<label>Explode<input id=\"explode\" type=\"range\" min=\"0\" max=\"100\" value=\"0\"></label>\n"
+  h << "</div>\n<label id=\"explode-row\">Explode<input id=\"explode\" type=\"range\" min=\"0\" max=\"100\" "
+       "value=\"0\"></label>\n"
+    << "<div id=\"cells-row\" style=\"display:none\">\n"
+    << "<label>Cut along <select id=\"cut-axis\"><option>x</option><option>y</option><option>z</option></select>"
+       " <span id=\"cut-text\"></span><input id=\"cut\" type=\"range\" min=\"0\" max=\"100\" value=\"100\"></label>\n"
+    << "<label>Show cells with <span id=\"filter-label\"></span> &le; <span id=\"filter-text\"></span>"
+       "<input id=\"filter\" type=\"range\" min=\"0\" max=\"100\" value=\"100\"></label>\n"
+    << "<div id=\"cells-count\" class=\"help\"></div>\n</div>\n"
     << "<div id=\"ghost-row\"><label><input id=\"ghost\" type=\"checkbox\" checked> show "
     << escape_html(scene.ghost_label) << " (translucent)</label></div>\n"
     << "<button id=\"reset\" type=\"button\">Reset view</button>\n"

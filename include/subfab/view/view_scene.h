@@ -28,6 +28,29 @@ struct ViewPolygon {
   std::vector<std::vector<Vec3>> loops3d;
 };
 
+//! A hexahedral mesh drawn cell by cell: the faces of the shown cells that
+//! no other shown cell covers (the boundary, and inside faces once a cut or
+//! a filter hides cells), each in its cell's colour. A click gives the
+//! cell's number and value. Cells use VTK's corner order (cell type 12).
+struct ViewHexCells {
+  std::vector<Vec3> points;
+  std::vector<std::array<int, 8>> cells;
+  std::vector<Rgb> colors;       // per cell
+  std::vector<double> values;    // per cell (e.g. the scaled Jacobian), shown on click and filtered on
+  std::string value_label = "value";
+  //! Per cell and face (kViewHexFaces order), the cell across the face or -1.
+  std::vector<std::array<int, 6>> neighbors;
+};
+
+//! The six faces of a hexahedron (VTK corner order) as local corner indices,
+//! counter-clockwise seen from outside; the hex module's kHexFaces order.
+inline constexpr std::array<std::array<int, 4>, 6> kViewHexFaces{{
+    {0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}}};
+
+//! Per cell and face, the other cell sharing that face (the same four
+//! corners), or -1 on the boundary.
+std::vector<std::array<int, 6>> hex_face_neighbors(const std::vector<std::array<int, 8>>& cells);
+
 //! How an object is drawn.
 enum class ViewStyle {
   Solid,  // opaque, flat shaded, pickable
@@ -41,6 +64,7 @@ struct ViewObject {
   ViewStyle style = ViewStyle::Solid;
   Mesh mesh;                            // triangles (model units), or empty when `polygons` is used
   std::vector<ViewPolygon> polygons;    // planar polygons, triangulated in the browser
+  ViewHexCells hex;                     // or hexahedral cells (when hex.cells is not empty)
   Vec3 explode_offset = Vec3::Zero();   // displacement at the explode slider's full value (model units)
   std::vector<std::pair<std::string, std::string>> info;  // lines shown on click: (label, value)
 };
