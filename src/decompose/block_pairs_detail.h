@@ -18,6 +18,9 @@ namespace subfab::detail {
 //! Do the closed boxes a and b meet (touching counts)?
 bool boxes_touch(const BoundingBox& a, const BoundingBox& b);
 
+//! Do the open interiors of the boxes a and b meet (touching does not count)?
+bool interiors_meet(const BoundingBox& a, const BoundingBox& b);
+
 //! The bounding box of each block's mesh, in order.
 std::vector<BoundingBox> block_boxes(const std::vector<Block>& blocks);
 

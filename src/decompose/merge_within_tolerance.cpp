@@ -22,9 +22,6 @@
 namespace subfab {
 namespace {
 
-bool interiors_meet(const BoundingBox& a, const BoundingBox& b) {
-  return (a.min.array() < b.max.array()).all() && (b.min.array() < a.max.array()).all();
-}
 
 BoundingBox widened(BoundingBox box, double margin) {
   box.min.array() -= margin;
@@ -136,7 +133,7 @@ std::optional<Candidate> evaluate(std::size_t i, std::size_t j, const State& s, 
     const double volume = signed_volume(m);
     bool collides = false;
     for (std::size_t k = 0; k < s.blocks.size() && !collides; ++k) {
-      if (k == i || k == j || !interiors_meet(mbox, s.boxes[k])) continue;
+      if (k == i || k == j || !detail::interiors_meet(mbox, s.boxes[k])) continue;
       if (overlap_volume_bound(m, s.blocks[k].mesh, Eigen::Matrix3d::Identity()) <=
           o.collision_tolerance * std::min(volume, s.volumes[k]))
         continue;

@@ -7,6 +7,7 @@
 #include <string>
 #include <utility>
 
+#include "decompose/block_pairs_detail.h"
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
 #include "subfab/geometry/axis.h"
@@ -18,9 +19,6 @@
 namespace subfab {
 namespace {
 
-bool interiors_meet(const BoundingBox& a, const BoundingBox& b) {
-  return (a.min.array() < b.max.array()).all() && (b.min.array() < a.max.array()).all();
-}
 
 std::string format_length(double v) {
   char buf[32];
@@ -78,7 +76,7 @@ MillToleranceResult mill_within_tolerance(const Mesh& solid, std::vector<Block> 
   std::vector<std::pair<std::size_t, std::size_t>> pairs;
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i + 1; j < n; ++j)
-      if ((r.filled[i] || r.filled[j]) && interiors_meet(boxes[i], boxes[j])) pairs.emplace_back(i, j);
+      if ((r.filled[i] || r.filled[j]) && detail::interiors_meet(boxes[i], boxes[j])) pairs.emplace_back(i, j);
   std::vector<char> collides(pairs.size(), 0);
   parallel_for(0, pairs.size(), [&](std::size_t p) {
     const auto [i, j] = pairs[p];
