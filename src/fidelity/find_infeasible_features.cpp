@@ -121,6 +121,15 @@ FeasibilityResult find_infeasible_features(const Mesh& mesh, const FeasibilityOp
   }
   std::vector<unsigned> mask(mesh.num_faces());
   for (std::size_t f = 0; f < mesh.num_faces(); ++f) mask[f] = facing_mask(signs[f]);
+  if (const std::vector<std::uint8_t>* allowed = options.allowed_overhangs) {
+    if (allowed->size() != mesh.num_faces())
+      throw InvalidArgumentError("find_infeasible_features: allowed_overhangs has " + std::to_string(allowed->size()) +
+                                 " entries for " + std::to_string(mesh.num_faces()) + " faces");
+    // Bit k allows both directions along axis k (kAllAxes order: +x, -x, +y, ...).
+    for (std::size_t f = 0; f < mesh.num_faces(); ++f)
+      for (unsigned k = 0; k < 3; ++k)
+        if (((*allowed)[f] >> k) & 1u) mask[f] |= 3u << (2 * k);
+  }
   const auto vertex = [&](int v) -> const Vec3& { return mesh.vertices[static_cast<std::size_t>(v)]; };
 
   std::vector<VertexScan> scans(scanned.size());

@@ -88,6 +88,30 @@ TEST(FindInfeasibleFeatures, CreaseInAnAxisPlaneWithBothFacesBelowIt) {
   EXPECT_TRUE(lists_edge(q, 0, 1));
 }
 
+// Within a tolerance a face may lean past vertical (tolerance_allowances()):
+// the hanging wedge's crease (normals of opposite signs in every coordinate)
+// is feasible once one of its two faces is allowed along any axis (both then
+// face a common direction); allowances of the other faces do not help, and a
+// wrong-sized list is refused.
+TEST(FindInfeasibleFeatures, AllowedOverhangsMakeACreaseFeasible) {
+  const Mesh wedge = hanging_wedge();
+  std::vector<std::uint8_t> allowed(wedge.num_faces(), 0);
+  FeasibilityOptions o;
+  o.allowed_overhangs = &allowed;
+  EXPECT_TRUE(lists_edge(find_infeasible_features(wedge, o), 0, 1));
+  allowed[0] = 1u << 0;  // face 0 along x: it faces +x too, as face 1 does
+  EXPECT_FALSE(lists_edge(find_infeasible_features(wedge, o), 0, 1));
+  allowed[0] = 1u << 1;  // along y: face 0 faces -y too, as face 1 does
+  EXPECT_FALSE(lists_edge(find_infeasible_features(wedge, o), 0, 1));
+  allowed[0] = 1u << 2;  // along z: face 0 faces +z too, as face 1 does
+  EXPECT_FALSE(lists_edge(find_infeasible_features(wedge, o), 0, 1));
+  allowed[0] = 0;
+  allowed[2] = allowed[3] = 7;  // the other faces: the crease stays
+  EXPECT_TRUE(lists_edge(find_infeasible_features(wedge, o), 0, 1));
+  allowed.pop_back();
+  EXPECT_THROW(find_infeasible_features(wedge, o), InvalidArgumentError);
+}
+
 // A sharp crease is impossible in one frame and fine in another: the corner
 // tetrahedron is one block in its frame, but turned generically its edges
 // (normals 125 degrees apart at the slanted face) leave the axis planes.

@@ -39,6 +39,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -69,6 +70,13 @@ struct FeasibilityOptions {
   // face an edit changed (before and after it), the difference of the two
   // local counts is that of the whole mesh, at the cost of the region only.
   std::vector<int> only_vertices;
+  // Within a tolerance (issue 17): per face, bit k set when the face may
+  // lean past vertical along axis k (tolerance_allowances()): it then counts
+  // as facing both +e_k and -e_k, as the decomposition's stages treat it, so
+  // it neither blocks a box along that axis nor lacks a common axis with its
+  // neighbour there. nullptr (default): exact normal signs only. When given,
+  // it must have one entry per face.
+  const std::vector<std::uint8_t>* allowed_overhangs = nullptr;
 };
 
 //! Result of find_infeasible_features().
