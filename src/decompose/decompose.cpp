@@ -2,6 +2,7 @@
 #include "subfab/decompose/decompose.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdint>
 #include <numeric>
@@ -53,6 +54,10 @@ void check_options(const DecomposeOptions& o) {
   if (std::isnan(o.tolerance_abs) || o.tolerance_abs < 0)
     throw InvalidArgumentError("--tolerance-abs must be a length in model units >= 0");
   if (o.tolerance_rounds < 1) throw InvalidArgumentError("tolerance_rounds must be at least 1");
+  if (o.tolerance_depth_fractions.empty() ||
+      !std::all_of(o.tolerance_depth_fractions.begin(), o.tolerance_depth_fractions.end(),
+                   [](double q) { return q > 0 && std::isfinite(q); }))
+    throw InvalidArgumentError("tolerance_depth_fractions must be positive finite numbers (at least one)");
   overhang_sine(o.max_overhang_deg);  // throws on a value outside [0, 45] degrees
 }
 
@@ -243,26 +248,36 @@ std::vector<Block> carve_stages(const Mesh& solid, const std::vector<std::uint8_
   return std::move(carved.blocks);
 }
 
-//! Takes the allowances back for the axis of every failed block, on the
-//! faces whose bounding box meets the block's (a block fails where the
-//! material left under its allowed faces is too deep or collides).
-std::size_t revoke_allowances(const Mesh& solid, const MillToleranceResult& milled, std::vector<std::uint8_t>& allowed) {
-  std::size_t revoked = 0;
+//! Lowers by one level (a smaller depth fraction, then none) the
+//! allowances for the axis of every failed block, on the faces allowed for
+//! it whose bounding box meets the block's (a block fails where the
+//! material left under its allowed faces is too deep or collides). Returns
+//! the number of allowances lowered.
+std::size_t lower_allowances(const Mesh& solid, const MillToleranceResult& milled, const std::vector<std::uint8_t>& allowed,
+                             std::vector<std::array<std::uint8_t, 3>>& level) {
+  std::vector<BoundingBox> face_boxes(solid.num_faces());
+  for (std::size_t f = 0; f < solid.num_faces(); ++f)
+    for (int v : solid.faces[f]) face_boxes[f].extend(solid.vertices[static_cast<std::size_t>(v)]);
+  std::vector<std::array<std::uint8_t, 3>> lower(solid.num_faces(), {0, 0, 0});
   for (std::size_t i = 0; i < milled.blocks.size(); ++i) {
     if (milled.failures[i].empty()) continue;
     const BoundingBox box = bounding_box(milled.blocks[i].mesh);
-    const auto bit = static_cast<std::uint8_t>(1u << axis_dimension(milled.blocks[i].axis));
+    const int k = axis_dimension(milled.blocks[i].axis);
+    const auto bit = static_cast<std::uint8_t>(1u << k);
     for (std::size_t f = 0; f < solid.num_faces(); ++f) {
-      if (!(allowed[f] & bit)) continue;
-      BoundingBox fb;
-      for (int v : solid.faces[f]) fb.extend(solid.vertices[static_cast<std::size_t>(v)]);
-      if ((fb.min.array() <= box.max.array()).all() && (box.min.array() <= fb.max.array()).all()) {
-        allowed[f] = static_cast<std::uint8_t>(allowed[f] & ~bit);
-        ++revoked;
-      }
+      const BoundingBox& fb = face_boxes[f];
+      if ((allowed[f] & bit) && (fb.min.array() <= box.max.array()).all() && (box.min.array() <= fb.max.array()).all())
+        lower[f][static_cast<std::size_t>(k)] = 1;
     }
   }
-  return revoked;
+  std::size_t lowered = 0;
+  for (std::size_t f = 0; f < solid.num_faces(); ++f)
+    for (std::size_t k = 0; k < 3; ++k)
+      if (lower[f][k]) {
+        ++level[f][k];
+        ++lowered;
+      }
+  return lowered;
 }
 
 //! Stage 7 of decompose(): exact merges of touching blocks (4.3.4
@@ -372,12 +387,19 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
   std::vector<char> filled;
   if (result.tolerance > 0) {
     auto tt = Clock::now();
+    const std::vector<double>& fractions = options.tolerance_depth_fractions;
     ToleranceAllowanceOptions ao;
     ao.tolerance = result.tolerance;
+    ao.depth_fraction = *std::max_element(fractions.begin(), fractions.end());
     ao.max_height = result.max_height;
-    ao.progress = progress;
-    std::vector<std::uint8_t> allowed = tolerance_allowances(solid, ao);
+    const std::vector<std::array<double, 3>> depths = undercut_depths(solid, ao);
+    std::vector<std::array<std::uint8_t, 3>> level(solid.num_faces(), {0, 0, 0});
+    std::vector<std::uint8_t> allowed = allowances_at(depths, level, fractions, result.tolerance);
     result.num_allowed_faces = count_allowed_faces(allowed);
+    if (progress)
+      progress->info(std::to_string(result.num_allowed_faces) + " of " + std::to_string(solid.num_faces()) +
+                     " faces may lean past vertical (undercut within " + std::to_string(fractions.front()) +
+                     " x the tolerance)");
     result.timings.tolerance += seconds_since(tt);
     for (int round = 0;; ++round) {
       const std::size_t num_allowed = count_allowed_faces(allowed);
@@ -397,19 +419,21 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
         result.deviation_bound = milled.max_deviation;
         break;
       }
-      std::size_t revoked = 0;
+      std::size_t lowered = 0;
       if (round + 1 >= options.tolerance_rounds) {
-        revoked = num_allowed;
+        lowered = num_allowed;
         allowed.assign(allowed.size(), 0);
       } else {
-        revoked = revoke_allowances(solid, milled, allowed);
+        lowered = lower_allowances(solid, milled, allowed, level);
+        allowed = allowances_at(depths, level, fractions, result.tolerance);
       }
       if (progress) {
         std::string first;
         for (std::size_t i = 0; i < milled.failures.size() && first.empty(); ++i)
           if (!milled.failures[i].empty()) first = "block " + std::to_string(i + 1) + ": " + milled.failures[i];
         progress->info(std::to_string(milled.num_failed()) + " block(s) beyond the tolerance (" + first + "); " +
-                       std::to_string(revoked) + " allowances taken back, decomposing again");
+                       std::to_string(lowered) + " allowances lowered, decomposing again with " +
+                       std::to_string(count_allowed_faces(allowed)) + " faces allowed");
       }
     }
   } else {

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "geometry/exact_normal_signs.h"
@@ -12,15 +13,24 @@
 
 namespace subfab {
 
-std::vector<std::uint8_t> tolerance_allowances(const Mesh& mesh, const ToleranceAllowanceOptions& options) {
+namespace {
+
+void check(const ToleranceAllowanceOptions& options) {
   if (!(options.tolerance > 0) || !std::isfinite(options.tolerance))
     throw InvalidArgumentError("tolerance_allowances: the tolerance must be positive");
   if (!(options.depth_fraction > 0)) throw InvalidArgumentError("tolerance_allowances: depth_fraction must be positive");
+}
+
+}  // namespace
+
+std::vector<std::array<double, 3>> undercut_depths(const Mesh& mesh, const ToleranceAllowanceOptions& options) {
+  check(options);
   const BoundingBox box = bounding_box(mesh);
   const detail::UndercutDepth depth(mesh);
   const auto signs = detail::exact_normal_signs(mesh);
   const double limit = options.depth_fraction * options.tolerance;
-  std::vector<std::uint8_t> allowed(mesh.num_faces(), 0);
+  constexpr double none = std::numeric_limits<double>::infinity();
+  std::vector<std::array<double, 3>> depths(mesh.num_faces(), {none, none, none});
   parallel_for(
       0, mesh.num_faces(),
       [&](std::size_t f) {
@@ -35,10 +45,30 @@ std::vector<std::uint8_t> tolerance_allowances(const Mesh& mesh, const Tolerance
           for (int v : t) top = std::max(top, mesh.vertices[static_cast<std::size_t>(v)].dot(d));
           const double bottom = s > 0 ? -box.max[k] : box.min[k];  // min over the model of v.d
           const double cap = std::min(options.max_height, top - bottom);
-          if (depth.depth(f, d, cap, limit) <= limit) allowed[f] |= static_cast<std::uint8_t>(1u << k);
+          depths[f][static_cast<std::size_t>(k)] = depth.depth(f, d, cap, limit);
         }
       },
       256);
+  return depths;
+}
+
+std::vector<std::uint8_t> allowances_at(const std::vector<std::array<double, 3>>& depths,
+                                        const std::vector<std::array<std::uint8_t, 3>>& level,
+                                        const std::vector<double>& fractions, double tolerance) {
+  if (level.size() != depths.size()) throw InvalidArgumentError("allowances_at: one level per face expected");
+  std::vector<std::uint8_t> allowed(depths.size(), 0);
+  for (std::size_t f = 0; f < depths.size(); ++f)
+    for (std::size_t k = 0; k < 3; ++k)
+      if (level[f][k] < fractions.size() && depths[f][k] <= fractions[level[f][k]] * tolerance)
+        allowed[f] = static_cast<std::uint8_t>(allowed[f] | (1u << k));
+  return allowed;
+}
+
+std::vector<std::uint8_t> tolerance_allowances(const Mesh& mesh, const ToleranceAllowanceOptions& options) {
+  const std::vector<std::array<double, 3>> depths = undercut_depths(mesh, options);
+  const std::vector<std::uint8_t> allowed =
+      allowances_at(depths, std::vector<std::array<std::uint8_t, 3>>(depths.size(), {0, 0, 0}),
+                    {options.depth_fraction}, options.tolerance);
   if (options.progress)
     options.progress->info(std::to_string(count_allowed_faces(allowed)) + " of " + std::to_string(mesh.num_faces()) +
                            " faces may lean past vertical (undercut within the tolerance)");

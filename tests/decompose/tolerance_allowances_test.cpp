@@ -5,6 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cmath>
+
 #include "subfab/core/error.h"
 #include "subfab/decompose/decompose.h"
 #include "subfab/validate/validate_decomposition.h"
@@ -57,6 +60,87 @@ TEST(ToleranceAllowances, DecomposeWithinTheToleranceMakesFewerExactBlocksThatVa
     EXPECT_TRUE(check_closed_solid(b.mesh).ok());
     EXPECT_TRUE(is_height_field(b.mesh, axis_direction(b.axis)));  // exact: the milled shape is the block
   }
+}
+
+
+TEST(ToleranceAllowances, UndercutDepthsGiveTheAllowancesOfEveryLevel) {
+  // Under the groove's ceiling (z = 6, facing -z) the free column runs down
+  // to the groove's floor (z = 4): depth 2 along z, and none along x or y.
+  const Mesh box = voxel_mesh(grooved_box_cells());
+  ToleranceAllowanceOptions o;
+  o.tolerance = 1.2;
+  o.depth_fraction = 2.0;
+  const auto depths = undercut_depths(box, o);
+  ASSERT_EQ(depths.size(), box.num_faces());
+  const std::vector<double> fractions{2.0, 1.0, 0.5};
+  std::vector<std::array<std::uint8_t, 3>> level(box.num_faces(), {0, 0, 0});
+  std::size_t ceiling = 0;
+  for (std::size_t f = 0; f < box.num_faces(); ++f) {
+    const Vec3 n = face_unit_normal(box, f);
+    const double z = box.vertices[static_cast<std::size_t>(box.faces[f][0])].z();
+    if (n.z() < -0.5 && z == 6.0) {
+      ++ceiling;
+      EXPECT_NEAR(depths[f][2], 2.0, 1e-9);
+      EXPECT_TRUE(std::isinf(depths[f][0]) && std::isinf(depths[f][1]));
+    }
+  }
+  ASSERT_GT(ceiling, 0u);
+  // Level 0 (2 x 1.2 = 2.4 >= 2): every ceiling face allowed along z.
+  auto count_z = [&](const std::vector<std::uint8_t>& a) {  // ceiling faces allowed along z
+    std::size_t c = 0;
+    for (std::size_t f = 0; f < a.size(); ++f)
+      c += (face_unit_normal(box, f).z() < -0.5 && box.vertices[static_cast<std::size_t>(box.faces[f][0])].z() == 6.0 &&
+            (a[f] & 4u))
+               ? 1
+               : 0;
+    return c;
+  };
+  EXPECT_EQ(count_z(allowances_at(depths, level, fractions, o.tolerance)), ceiling);
+  // Level 1 (1 x 1.2 < 2): none; past the last level: none either.
+  for (auto& l : level) l[2] = 1;
+  EXPECT_EQ(count_z(allowances_at(depths, level, fractions, o.tolerance)), 0u);
+  for (auto& l : level) l = {3, 3, 3};
+  EXPECT_EQ(count_allowed_faces(allowances_at(depths, level, fractions, o.tolerance)), 0u);
+  EXPECT_THROW(allowances_at(depths, {}, fractions, o.tolerance), InvalidArgumentError);
+}
+
+TEST(ToleranceAllowances, AnUndercutDeeperThanHalfTheToleranceIsAllowedAndMeasured) {
+  // T = 1.2: the groove's fill deviates 1 <= T, its undercut depth is 2.
+  // At the first depth fraction (2) the ceiling is allowed, one block; at
+  // 0.5 alone it is not (2 > 0.6).
+  const Mesh box = voxel_mesh(grooved_box_cells());
+  DecomposeOptions within;
+  within.orient = false;
+  within.tolerance_abs = 1.2;
+  within.tolerance_fraction = 1.0;
+  const DecomposeResult t = decompose(box, within);
+  EXPECT_GT(t.num_allowed_faces, 0u);
+  EXPECT_EQ(t.blocks.size(), 1u);
+  EXPECT_LE(t.deviation_bound, 1.2);
+  for (const Block& b : t.blocks) EXPECT_TRUE(is_height_field(b.mesh, axis_direction(b.axis)));
+  within.tolerance_depth_fractions = {0.5};  // the faces of zero depth (the base's) only
+  EXPECT_LT(decompose(box, within).num_allowed_faces, t.num_allowed_faces);
+  within.tolerance_depth_fractions = {};
+  EXPECT_THROW(decompose(box, within), InvalidArgumentError);
+}
+
+TEST(ToleranceAllowances, AnAllowanceTheMeasureRefutesIsLoweredAndTheResultStaysExact) {
+  // T = 0.9 < the groove's depth 1: allowed at fraction 4 (2 <= 3.6), the
+  // milled shape then deviates 1 > T and fails; the next level (0.5 x 0.9)
+  // allows nothing there, and no merge within 0.9 exists: the exact blocks.
+  const Mesh box = voxel_mesh(grooved_box_cells());
+  DecomposeOptions within;
+  within.orient = false;
+  const std::size_t exact = decompose(box, within).blocks.size();
+  within.tolerance_abs = 0.9;
+  within.tolerance_fraction = 1.0;
+  within.tolerance_depth_fractions = {4.0, 0.5};
+  const DecomposeResult t = decompose(box, within);
+  EXPECT_GT(t.num_allowed_faces, 0u);
+  EXPECT_GE(t.num_tolerance_rounds, 1);
+  EXPECT_EQ(t.blocks.size(), exact);
+  EXPECT_LE(t.deviation_bound, 0.9);
+  for (const Block& b : t.blocks) EXPECT_TRUE(is_height_field(b.mesh, axis_direction(b.axis)));
 }
 
 }  // namespace

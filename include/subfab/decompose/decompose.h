@@ -43,8 +43,12 @@ struct DecomposeOptions {
   double tolerance_fraction = 0.0;  // --tolerance: deviation allowed, x bbox diagonal (0 = exact blocks only, the
                                     // thesis's exact decomposition); see merge_within_tolerance()
   double tolerance_abs = std::numeric_limits<double>::infinity();  // --tolerance-abs: model units; the smaller wins
-  int tolerance_rounds = 3;         // within a tolerance: decompositions under allowances (tolerance_allowances())
-                                    // before the exact one; each takes them back where a block fails (>= 1)
+  int tolerance_rounds = 4;         // within a tolerance: decompositions under allowances (tolerance_allowances())
+                                    // before the exact one (>= 1)
+  std::vector<double> tolerance_depth_fractions = {2.0, 1.0, 0.5};  // within a tolerance: a face may lean past
+                                    // vertical when its undercut depth <= q x T, q first the first of these (> 0,
+                                    // unitless); where a block's milled shape fails the measure, the faces in its
+                                    // box step to the next q, then to none. A heuristic: the measure decides
   Progress* progress = nullptr; // stage progress (nullptr = silent)
 };
 

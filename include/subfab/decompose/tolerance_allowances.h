@@ -15,6 +15,7 @@
 //! (mill_within_tolerance()): an allowance is only a proposal.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <vector>
@@ -29,7 +30,8 @@ struct ToleranceAllowanceOptions {
   double tolerance = 0.0;       // T, model units (> 0)
   double depth_fraction = 0.5;  // allow a face when its undercut depth <= this x T (unitless, > 0): below 1 it
                                 // leaves room for where the fill reaches past the face's plane (a heuristic;
-                                // the measure decides)
+                                // the measure decides). decompose() starts at 2 and steps down per failing
+                                // block (DecomposeOptions::tolerance_depth_fractions)
   double max_height = std::numeric_limits<double>::infinity();  // fills stop at the block's base: depth cap, model units
   Progress* progress = nullptr;  // info line (nullptr: silent)
 };
@@ -40,6 +42,23 @@ struct ToleranceAllowanceOptions {
 //! independent of the thread count.
 //! \param mesh closed, outward-oriented solid (canonical frame)
 std::vector<std::uint8_t> tolerance_allowances(const Mesh& mesh, const ToleranceAllowanceOptions& options);
+
+//! Per face of `mesh` and axis k, the undercut depth (UndercutDepth, model
+//! units) under the face for the axis direction along e_k it faces away
+//! from, capped as in tolerance_allowances(); +infinity where the face faces
+//! every axis direction along e_k (no allowance needed, none given). Where
+//! the depth exceeds depth_fraction x T its value is only known to exceed
+//! it (the rays may stop early). The allowance bits at any fraction
+//! q <= options.depth_fraction follow from it (allowances_at()).
+std::vector<std::array<double, 3>> undercut_depths(const Mesh& mesh, const ToleranceAllowanceOptions& options);
+
+//! Bit k of face f set when depths[f][k] <= fractions[level[f][k]] x
+//! tolerance (levels at or past fractions.size() allow nothing): the
+//! allowances of a decomposition round whose faces may stand at different
+//! levels (decompose() lowers a face's level where a block fails).
+std::vector<std::uint8_t> allowances_at(const std::vector<std::array<double, 3>>& depths,
+                                        const std::vector<std::array<std::uint8_t, 3>>& level,
+                                        const std::vector<double>& fractions, double tolerance);
 
 //! Number of faces with at least one allowance.
 std::size_t count_allowed_faces(const std::vector<std::uint8_t>& allowed);
