@@ -27,6 +27,16 @@ struct Optimizer {
   const detail::SurfaceProjector& surface;
   std::vector<Vec3> target;      // per boundary vertex: where it goes on the surface
   std::vector<char> on_surface;  // per vertex: a boundary vertex that has reached the surface
+  std::vector<Vec3> origin;      // per vertex: where it was when the optimisation began
+  std::vector<double> reach;     // per vertex: how far untangling may take it (its mean edge then)
+
+  //! Untangling may not take a vertex farther than its reach from where it
+  //! began (a boundary vertex: from its target): otherwise an inverted
+  //! corner "improves" towards 0 as the vertex runs away to infinity.
+  bool within_reach(std::size_t v, const Vec3& q) const {
+    const Vec3& anchor = topo.on_boundary[v] ? target[v] : origin[v];
+    return (q - anchor).norm() <= reach[v];
+  }
 
   double worst_at(std::size_t v) const {
     double worst = 1;
@@ -170,6 +180,9 @@ struct Optimizer {
       for (int ls = 0; ls < 10; ++ls, step *= 0.5) {
         Vec3 q = p + step * dir;
         if (constrained) q = surface.closest_point(q);
+        // a boundary vertex set free stays within a quarter edge of the surface
+        else if (topo.on_boundary[v] && (surface.closest_point(q) - q).norm() > 0.25 * scale) continue;
+        if (!within_reach(v, q)) continue;
         const double e = energy_if(v, q);
         if (e < current) {
           mesh.vertices[v] = q;
@@ -186,6 +199,44 @@ struct Optimizer {
       target[v] = surface.closest_point(mesh.vertices[v]);
     }
     return improved;
+  }
+
+  //! Pattern search that raises the worst scaled Jacobian of v's hexahedra
+  //! directly (the soft-min energy can stall with one corner held at 0 by
+  //! the others): steps along the axes and the 8 cube diagonals, sizes
+  //! 0.2 to 0.0125 of the mean edge, the first that raises the worst wins.
+  //! Free boundary: used by the last resort only.
+  bool raise_worst(std::size_t v) {
+    const double scale = edge_scale(v);
+    if (!(scale > 0)) return false;
+    double current = worst_at(v);
+    const double start = current;
+    for (double step = 0.2 * scale; step > 0.01 * scale; step *= 0.5) {
+      bool moved = true;
+      for (int round = 0; round < 4 && moved; ++round) {
+        moved = false;
+        for (int d = 0; d < 14; ++d) {
+          Vec3 dir = Vec3::Zero();
+          if (d < 6) dir[d / 2] = d % 2 ? -1.0 : 1.0;
+          else dir = Vec3((d - 6) & 1 ? -1.0 : 1.0, (d - 6) & 2 ? -1.0 : 1.0, (d - 6) & 4 ? -1.0 : 1.0) / std::sqrt(3.0);
+          const Vec3 q = mesh.vertices[v] + step * dir;
+          // a boundary vertex stays within a quarter edge of the surface
+          if (topo.on_boundary[v] && (surface.closest_point(q) - q).norm() > 0.25 * scale) continue;
+          if (!within_reach(v, q)) continue;
+          const double w = worst_if(v, q);
+          if (w > current + 1e-6) {
+            mesh.vertices[v] = q;
+            current = w;
+            moved = true;
+          }
+        }
+      }
+    }
+    if (current > start && topo.on_boundary[v]) {
+      on_surface[v] = 0;
+      target[v] = surface.closest_point(mesh.vertices[v]);
+    }
+    return current > start;
   }
 
   //! Sum of the distances of the boundary vertices still off the surface.
@@ -223,7 +274,10 @@ int run_passes(Optimizer& opt, const OptimizeHexMeshOptions& options, double thr
       if (sj[h] < threshold)
         for (int v : mesh.hexes[h]) bad[idx(v)] = 1;
     for (std::size_t v = 0; v < bad.size(); ++v)
-      if (bad[v]) opt.untangle_vertex(v, free_boundary);
+      if (bad[v]) {
+        opt.untangle_vertex(v, free_boundary);
+        if (free_boundary) opt.raise_worst(v);
+      }
     if (options.progress && !free_boundary)
       options.progress->update(static_cast<std::size_t>(pass), static_cast<std::size_t>(options.passes));
     // stop when done, or when neither the worst element nor the distance
@@ -235,7 +289,7 @@ int run_passes(Optimizer& opt, const OptimizeHexMeshOptions& options, double thr
       best = std::max(best, worst_now);
       best_remaining = std::min(best_remaining, left);
       since_progress = 0;
-    } else if (++since_progress >= kPatience) {
+    } else if (++since_progress >= kPatience && !free_boundary) {
       break;
     }
   }
@@ -251,6 +305,9 @@ OptimizeHexMeshReport optimize_hex_mesh(HexMesh& mesh, const Mesh& surface, cons
   Optimizer opt{mesh, topo, projector, {}, {}};
   opt.target.assign(mesh.vertices.size(), Vec3::Zero());
   opt.on_surface.assign(mesh.vertices.size(), 0);
+  opt.origin = mesh.vertices;
+  opt.reach.resize(mesh.vertices.size());
+  for (std::size_t v = 0; v < mesh.vertices.size(); ++v) opt.reach[v] = opt.edge_scale(v);
   {
     StageScope stage(options.progress, "project");
     if (options.targets && options.targets->size() != mesh.vertices.size())
@@ -273,7 +330,14 @@ OptimizeHexMeshReport optimize_hex_mesh(HexMesh& mesh, const Mesh& surface, cons
   report.passes = run_passes(opt, options, options.target_quality, false, options.smooth);
   // last resort for elements still inverted: their boundary vertices may
   // leave the surface (validity first; the distance report shows the cost)
-  if (min_of(scaled_jacobians(mesh)) <= kInvertedMargin) run_passes(opt, options, kInvertedMargin, true, false);
+  // (kept only if it raised the worst element: it can also push a tangle
+  // further apart)
+  if (const double before = min_of(scaled_jacobians(mesh)); before <= kInvertedMargin) {
+    const std::vector<Vec3> kept = mesh.vertices;
+    const std::vector<char> kept_on_surface = opt.on_surface;
+    run_passes(opt, options, kInvertedMargin, true, false);
+    if (min_of(scaled_jacobians(mesh)) <= before) mesh.vertices = kept, opt.on_surface = kept_on_surface;
+  }
   const auto sj = scaled_jacobians(mesh);
   report.min_after = min_of(sj);
   report.num_inverted = static_cast<std::size_t>(std::count_if(sj.begin(), sj.end(), [](double q) { return q <= 0; }));
