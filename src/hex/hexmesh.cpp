@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 
 #include "geometry/hausdorff_distance.h"
 #include "hex/hex_topology.h"
@@ -64,12 +66,13 @@ void place_pillow(HexMesh& mesh, const std::vector<Vec3>& anchors, const std::ve
     if (outer[v] >= 0) mesh.vertices[v] = inner[v];
 }
 
-//! Moves every boundary vertex onto the surface along the pillow edge that
-//! joins it to the interior: a ray from the inner end of that edge through
-//! the vertex, first hit (closest point when it misses). Done after each
-//! subdivision, so new boundary vertices follow the shape level by level
-//! without the folds a closest-point projection makes across thin parts.
-void project_boundary_radially(HexMesh& mesh, const detail::SurfaceProjector& projector) {
+//! Where each boundary vertex goes on the surface: along the pillow edge
+//! that joins it to the interior, a ray from the inner end of that edge
+//! through the vertex, first hit (closest point when it misses or jumps a
+//! gap). Used after each subdivision, so new boundary vertices follow the
+//! shape level by level without the folds a closest-point projection makes
+//! across thin parts. The optimiser moves them there in valid steps.
+std::vector<Vec3> radial_targets(const HexMesh& mesh, const detail::SurfaceProjector& projector) {
   const detail::HexTopology topo = detail::hex_topology(mesh);
   std::vector<Vec3> next = mesh.vertices;
   parallel_for(0, mesh.vertices.size(), [&](std::size_t v) {
@@ -93,7 +96,7 @@ void project_boundary_radially(HexMesh& mesh, const detail::SurfaceProjector& pr
       if ((*hit - mesh.vertices[v]).norm() <= 2 * (closest - mesh.vertices[v]).norm() + 0.25 * dir.norm())
         next[v] = *hit;
   }, 256);
-  mesh.vertices = std::move(next);
+  return next;
 }
 
 }  // namespace
@@ -153,16 +156,26 @@ HexMeshResult hexmesh(const Mesh& surface, const Skeleton* skeleton, const HexMe
   const bool smooth = oo.smooth;
   oo.smooth = smooth && r.subdivisions == 0;  // smoothing a coarse level drags the core to the surface
   r.optimize = optimize_hex_mesh(mesh, surface, oo);
+  if (std::getenv("HEXDBG")) {
+    const auto sj = scaled_jacobians(mesh);
+    for (std::size_t h = 0; h < sj.size(); ++h)
+      if (sj[h] <= 0) std::fprintf(stderr, "  coarse inverted %zu (%s) %.3f\n", h, h < r.structure.hexes.size() ? "core" : "pillow", sj[h]);
+  }
+  if (std::getenv("HEXDBG")) std::fprintf(stderr, "coarse: %zu hexes before %.3f after %.3f inv %zu off %zu passes %d\n", mesh.hexes.size(), r.optimize.min_before, r.optimize.min_after, r.optimize.num_inverted, r.optimize.num_off_surface, r.optimize.passes);
   for (int i = 0; i < r.subdivisions; ++i) {
     oo.smooth = smooth && i + 1 == r.subdivisions;
+    std::vector<Vec3> targets;
     {
-      StageScope stage(progress, "subdivide and project");
+      StageScope stage(progress, "subdivide");
       mesh = subdivide_hex_mesh(mesh);
-      project_boundary_radially(mesh, projector);
+      targets = radial_targets(mesh, projector);
     }
+    oo.targets = &targets;
     const double first_min = r.optimize.min_before;
     r.optimize = optimize_hex_mesh(mesh, surface, oo);
+    if (std::getenv("HEXDBG")) std::fprintf(stderr, "level %d: %zu hexes before %.3f after %.3f inv %zu off %zu passes %d\n", i, mesh.hexes.size(), r.optimize.min_before, r.optimize.min_after, r.optimize.num_inverted, r.optimize.num_off_surface, r.optimize.passes);
     r.optimize.min_before = std::min(first_min, r.optimize.min_before);
+    oo.targets = nullptr;
   }
   timer.lap("subdivide + project + optimise");
   {

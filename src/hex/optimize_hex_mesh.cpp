@@ -7,6 +7,7 @@
 
 #include "hex/hex_topology.h"
 #include "hex/surface_projector.h"
+#include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
 #include "subfab/hex/scaled_jacobian.h"
 
@@ -15,14 +16,27 @@ namespace {
 
 std::size_t idx(int v) { return static_cast<std::size_t>(v); }
 
-constexpr double kInvertedMargin = 0.02;  // the last-resort pass lifts elements above this
+constexpr double kInvertedMargin = 0.02;  // the last-resort passes lift elements above this
 constexpr double kProgress = 1e-3;        // improvement of the worst element that counts as progress
 constexpr int kPatience = 10;             // passes without progress before giving up
+constexpr double kArrived = 1e-12;        // squared distance at which a vertex is at its target
 
 struct Optimizer {
   HexMesh& mesh;
   const detail::HexTopology& topo;
   const detail::SurfaceProjector& surface;
+  std::vector<Vec3> target;      // per boundary vertex: where it goes on the surface
+  std::vector<char> on_surface;  // per vertex: a boundary vertex that has reached the surface
+  std::vector<Vec3> origin;      // per vertex: where it was when the optimisation began
+  std::vector<double> reach;     // per vertex: how far untangling may take it (its mean edge then)
+
+  //! Untangling may not take a vertex farther than its reach from where it
+  //! began (a boundary vertex: from its target): otherwise an inverted
+  //! corner "improves" towards 0 as the vertex runs away to infinity.
+  bool within_reach(std::size_t v, const Vec3& q) const {
+    const Vec3& anchor = topo.on_boundary[v] ? target[v] : origin[v];
+    return (q - anchor).norm() <= reach[v];
+  }
 
   double worst_at(std::size_t v) const {
     double worst = 1;
@@ -57,14 +71,45 @@ struct Optimizer {
     }
   }
 
-  //! Smart smoothing pass; returns the number of vertices moved.
+  //! Guarded projection: every boundary vertex not yet on the surface moves
+  //! towards its target, the whole way, half or a quarter of it, whichever
+  //! first keeps the worst scaled Jacobian of its hexahedra at least
+  //! min(floor, its value before). Returns the number of vertices moved.
+  std::size_t project_step(double floor) {
+    std::size_t moved = 0;
+    for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
+      if (!topo.on_boundary[v] || on_surface[v]) continue;
+      const Vec3 p = mesh.vertices[v];
+      const Vec3 d = target[v] - p;
+      if (d.squaredNorm() <= kArrived) {
+        mesh.vertices[v] = target[v];
+        on_surface[v] = 1;
+        continue;
+      }
+      const double guard = std::min(floor, worst_at(v));
+      for (double t : {1.0, 0.5, 0.25}) {
+        const Vec3 q = t == 1.0 ? target[v] : Vec3(p + t * d);
+        if (worst_if(v, q) >= guard) {
+          mesh.vertices[v] = q;
+          on_surface[v] = t == 1.0;
+          ++moved;
+          break;
+        }
+      }
+    }
+    return moved;
+  }
+
+  //! Smart smoothing pass; returns the number of vertices moved. Boundary
+  //! vertices still off the surface are left to project_step().
   std::size_t smart_smooth() {
     std::size_t moved = 0;
     for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
+      if (topo.on_boundary[v] && !on_surface[v]) continue;
       const double before = worst_at(v);
-      const Vec3 target = mean_target(v);
-      if (worst_if(v, target) >= std::min(before, kSmoothCap)) {  // no worse (ignoring changes near 1)
-        mesh.vertices[v] = target;
+      const Vec3 target_point = mean_target(v);
+      if (worst_if(v, target_point) >= std::min(before, kSmoothCap)) {  // no worse (ignoring changes near 1)
+        mesh.vertices[v] = target_point;
         ++moved;
       }
     }
@@ -82,7 +127,6 @@ struct Optimizer {
         const auto& n = kHexCornerNeighbors[i];
         const Vec3& p = mesh.vertices[idx(hex[i])];
         Vec3 ed[3];
-        double alpha = 0;
         bool degenerate = false;
         for (std::size_t k = 0; k < 3; ++k) {
           ed[k] = mesh.vertices[idx(hex[idx(n[k])])] - p;
@@ -90,7 +134,7 @@ struct Optimizer {
           if (!(len > 0)) degenerate = true;
           else ed[k] /= len;
         }
-        alpha = degenerate ? -1.0 : ed[0].dot(ed[1].cross(ed[2]));
+        const double alpha = degenerate ? -1.0 : ed[0].dot(ed[1].cross(ed[2]));
         e += std::exp(-kSharpness * alpha);
       }
     }
@@ -105,10 +149,11 @@ struct Optimizer {
   }
 
   //! A few gradient steps (central differences, backtracking) on the soft-min
-  //! energy around v; a boundary vertex moves in the surface's tangent plane
-  //! and is put back on the surface. True if the energy went down.
-  bool untangle_vertex(std::size_t v, bool free_boundary = false) {
-    const bool constrained = topo.on_boundary[v] && !free_boundary;
+  //! energy around v; a boundary vertex on the surface moves in the surface's
+  //! tangent plane and is put back on the surface, unless `free_boundary`.
+  //! True if the energy went down.
+  bool untangle_vertex(std::size_t v, bool free_boundary) {
+    const bool constrained = topo.on_boundary[v] && on_surface[v] && !free_boundary;
     const double scale = edge_scale(v);
     if (!(scale > 0)) return false;
     const double h = 1e-4 * scale;
@@ -135,6 +180,9 @@ struct Optimizer {
       for (int ls = 0; ls < 10; ++ls, step *= 0.5) {
         Vec3 q = p + step * dir;
         if (constrained) q = surface.closest_point(q);
+        // a boundary vertex set free stays within a quarter edge of the surface
+        else if (topo.on_boundary[v] && (surface.closest_point(q) - q).norm() > 0.25 * scale) continue;
+        if (!within_reach(v, q)) continue;
         const double e = energy_if(v, q);
         if (e < current) {
           mesh.vertices[v] = q;
@@ -145,12 +193,108 @@ struct Optimizer {
       }
       if (!moved) break;
     }
-    return current < start * (1 - 1e-9);
+    const bool improved = current < start * (1 - 1e-9);
+    if (improved && topo.on_boundary[v] && !constrained) {  // it left or slid off the surface
+      on_surface[v] = 0;
+      target[v] = surface.closest_point(mesh.vertices[v]);
+    }
+    return improved;
+  }
+
+  //! Pattern search that raises the worst scaled Jacobian of v's hexahedra
+  //! directly (the soft-min energy can stall with one corner held at 0 by
+  //! the others): steps along the axes and the 8 cube diagonals, sizes
+  //! 0.2 to 0.0125 of the mean edge, the first that raises the worst wins.
+  //! Free boundary: used by the last resort only.
+  bool raise_worst(std::size_t v) {
+    const double scale = edge_scale(v);
+    if (!(scale > 0)) return false;
+    double current = worst_at(v);
+    const double start = current;
+    for (double step = 0.2 * scale; step > 0.01 * scale; step *= 0.5) {
+      bool moved = true;
+      for (int round = 0; round < 4 && moved; ++round) {
+        moved = false;
+        for (int d = 0; d < 14; ++d) {
+          Vec3 dir = Vec3::Zero();
+          if (d < 6) dir[d / 2] = d % 2 ? -1.0 : 1.0;
+          else dir = Vec3((d - 6) & 1 ? -1.0 : 1.0, (d - 6) & 2 ? -1.0 : 1.0, (d - 6) & 4 ? -1.0 : 1.0) / std::sqrt(3.0);
+          const Vec3 q = mesh.vertices[v] + step * dir;
+          // a boundary vertex stays within a quarter edge of the surface
+          if (topo.on_boundary[v] && (surface.closest_point(q) - q).norm() > 0.25 * scale) continue;
+          if (!within_reach(v, q)) continue;
+          const double w = worst_if(v, q);
+          if (w > current + 1e-6) {
+            mesh.vertices[v] = q;
+            current = w;
+            moved = true;
+          }
+        }
+      }
+    }
+    if (current > start && topo.on_boundary[v]) {
+      on_surface[v] = 0;
+      target[v] = surface.closest_point(mesh.vertices[v]);
+    }
+    return current > start;
+  }
+
+  //! Sum of the distances of the boundary vertices still off the surface.
+  double remaining() const {
+    double s = 0;
+    for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
+      if (topo.on_boundary[v] && !on_surface[v]) s += (target[v] - mesh.vertices[v]).norm();
+    return s;
   }
 
   static constexpr double kSharpness = 10.0;
   static constexpr double kSmoothCap = 0.999;
 };
+
+double min_of(const std::vector<double>& sj) { return sj.empty() ? 1.0 : *std::min_element(sj.begin(), sj.end()); }
+
+//! Passes of projection, smoothing and untangling until every element is
+//! over `threshold` and every boundary vertex on the surface, or no progress
+//! for kPatience passes, or `passes` passes. Untangling moves the vertices of
+//! the elements under `threshold`; with `free_boundary` (the last resort)
+//! their boundary vertices may leave the surface and nothing is projected.
+int run_passes(Optimizer& opt, const OptimizeHexMeshOptions& options, double threshold, bool free_boundary,
+               bool smooth) {
+  HexMesh& mesh = opt.mesh;
+  double best = min_of(scaled_jacobians(mesh));
+  double best_remaining = free_boundary ? 0.0 : opt.remaining();
+  int since_progress = 0, pass = 0;
+  while (pass < options.passes) {
+    ++pass;
+    if (!free_boundary) opt.project_step(options.projection_floor);
+    if (smooth) opt.smart_smooth();
+    const auto sj = scaled_jacobians(mesh);
+    std::vector<char> bad(mesh.vertices.size(), 0);
+    for (std::size_t h = 0; h < sj.size(); ++h)
+      if (sj[h] < threshold)
+        for (int v : mesh.hexes[h]) bad[idx(v)] = 1;
+    for (std::size_t v = 0; v < bad.size(); ++v)
+      if (bad[v]) {
+        opt.untangle_vertex(v, free_boundary);
+        if (free_boundary) opt.raise_worst(v);
+      }
+    if (options.progress && !free_boundary)
+      options.progress->update(static_cast<std::size_t>(pass), static_cast<std::size_t>(options.passes));
+    // stop when done, or when neither the worst element nor the distance
+    // left to the surface has improved for kPatience passes
+    const double worst_now = min_of(scaled_jacobians(mesh));
+    const double left = free_boundary ? 0.0 : opt.remaining();
+    if (worst_now >= threshold && left == 0) break;
+    if (worst_now > best + kProgress || left < (1 - 1e-2) * best_remaining) {
+      best = std::max(best, worst_now);
+      best_remaining = std::min(best_remaining, left);
+      since_progress = 0;
+    } else if (++since_progress >= kPatience && !free_boundary) {
+      break;
+    }
+  }
+  return pass;
+}
 
 }  // namespace
 
@@ -158,64 +302,47 @@ OptimizeHexMeshReport optimize_hex_mesh(HexMesh& mesh, const Mesh& surface, cons
   OptimizeHexMeshReport report;
   const detail::HexTopology topo = detail::hex_topology(mesh);
   const detail::SurfaceProjector projector(surface);
-  Optimizer opt{mesh, topo, projector};
+  Optimizer opt{mesh, topo, projector, {}, {}};
+  opt.target.assign(mesh.vertices.size(), Vec3::Zero());
+  opt.on_surface.assign(mesh.vertices.size(), 0);
+  opt.origin = mesh.vertices;
+  opt.reach.resize(mesh.vertices.size());
+  for (std::size_t v = 0; v < mesh.vertices.size(); ++v) opt.reach[v] = opt.edge_scale(v);
   {
-    StageScope stage(options.progress, "relax");
-    // boundary vertices onto the surface first
+    StageScope stage(options.progress, "project");
+    if (options.targets && options.targets->size() != mesh.vertices.size())
+      throw InvalidArgumentError("optimize_hex_mesh: " + std::to_string(options.targets->size()) +
+                                 " targets for " + std::to_string(mesh.vertices.size()) + " vertices");
     parallel_for(0, mesh.vertices.size(), [&](std::size_t v) {
-      if (topo.on_boundary[v]) mesh.vertices[v] = projector.closest_point(mesh.vertices[v]);
+      if (topo.on_boundary[v])
+        opt.target[v] = options.targets ? (*options.targets)[v] : projector.closest_point(mesh.vertices[v]);
     }, 512);
+    report.min_before = min_of(scaled_jacobians(mesh));
+    if (options.guard_projection) {
+      opt.project_step(options.projection_floor);
+    } else {  // unguarded: every boundary vertex straight to its target
+      for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
+        if (topo.on_boundary[v]) mesh.vertices[v] = opt.target[v], opt.on_surface[v] = 1;
+    }
     opt.relax(options.relax_iterations);
   }
-  auto worst = [&] {
-    const auto sj = scaled_jacobians(mesh);
-    return sj.empty() ? 1.0 : *std::min_element(sj.begin(), sj.end());
-  };
-  report.min_before = worst();
   StageScope stage(options.progress, "optimise");
-  double best = report.min_before;
-  int since_progress = 0;
-  for (int pass = 0; pass < options.passes; ++pass) {
-    report.passes = pass + 1;
-    if (options.smooth) opt.smart_smooth();
-    const auto sj = scaled_jacobians(mesh);
-    std::vector<bool> bad(mesh.vertices.size(), false);
-    for (std::size_t h = 0; h < sj.size(); ++h)
-      if (sj[h] < options.target_quality)
-        for (int v : mesh.hexes[h]) bad[idx(v)] = true;
-    for (std::size_t v = 0; v < bad.size(); ++v)
-      if (bad[v]) opt.untangle_vertex(v);
-    if (options.progress) options.progress->update(static_cast<std::size_t>(pass + 1), static_cast<std::size_t>(options.passes));
-    // stop when every element is good enough, or when the worst one has
-    // not improved by kProgress for kPatience passes
-    const auto after = scaled_jacobians(mesh);
-    const double worst_now = after.empty() ? 1.0 : *std::min_element(after.begin(), after.end());
-    if (worst_now >= options.target_quality) break;
-    if (worst_now > best + kProgress) {
-      best = worst_now;
-      since_progress = 0;
-    } else if (++since_progress >= kPatience) {
-      break;
-    }
-  }
+  report.passes = run_passes(opt, options, options.target_quality, false, options.smooth);
   // last resort for elements still inverted: their boundary vertices may
   // leave the surface (validity first; the distance report shows the cost)
-  for (int pass = 0; pass < options.passes; ++pass) {
-    const auto sj = scaled_jacobians(mesh);
-    std::vector<bool> bad(mesh.vertices.size(), false);
-    bool any = false;
-    for (std::size_t h = 0; h < sj.size(); ++h)
-      if (sj[h] <= kInvertedMargin) {
-        any = true;
-        for (int v : mesh.hexes[h]) bad[idx(v)] = true;
-      }
-    if (!any) break;
-    for (std::size_t v = 0; v < bad.size(); ++v)
-      if (bad[v]) opt.untangle_vertex(v, true);
+  // (kept only if it raised the worst element: it can also push a tangle
+  // further apart)
+  if (const double before = min_of(scaled_jacobians(mesh)); before <= kInvertedMargin) {
+    const std::vector<Vec3> kept = mesh.vertices;
+    const std::vector<char> kept_on_surface = opt.on_surface;
+    run_passes(opt, options, kInvertedMargin, true, false);
+    if (min_of(scaled_jacobians(mesh)) <= before) mesh.vertices = kept, opt.on_surface = kept_on_surface;
   }
   const auto sj = scaled_jacobians(mesh);
-  report.min_after = sj.empty() ? 1.0 : *std::min_element(sj.begin(), sj.end());
+  report.min_after = min_of(sj);
   report.num_inverted = static_cast<std::size_t>(std::count_if(sj.begin(), sj.end(), [](double q) { return q <= 0; }));
+  for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
+    if (topo.on_boundary[v] && !opt.on_surface[v]) ++report.num_off_surface;
   return report;
 }
 

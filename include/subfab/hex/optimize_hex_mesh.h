@@ -24,6 +24,7 @@
 #pragma once
 
 #include <cstddef>
+#include <vector>
 
 #include "subfab/core/progress.h"
 #include "subfab/hex/hex_mesh.h"
@@ -36,6 +37,9 @@ struct OptimizeHexMeshOptions {
   int passes = 100;             // at most this many smart smoothing + untangling passes (steps 2 and 3)
   double target_quality = 0.5;  // hexahedra under this scaled Jacobian get their vertices optimised
   bool smooth = true;           // run the smart smoothing of step 2 (else untangling only)
+  const std::vector<Vec3>* targets = nullptr;  // per vertex: where a boundary vertex goes (null: closest point)
+  bool guard_projection = true;    // move boundary vertices to their targets only in steps that keep validity
+  double projection_floor = 0.1;   // a projection step may lower its hexahedra's worst scaled Jacobian to this
   Progress* progress = nullptr;
 };
 
@@ -43,6 +47,7 @@ struct OptimizeHexMeshReport {
   double min_before = 0;  // worst scaled Jacobian after relaxation (step 1)
   double min_after = 0;
   std::size_t num_inverted = 0;  // hexahedra with scaled Jacobian <= 0 at the end
+  std::size_t num_off_surface = 0;  // boundary vertices left off the surface (could not reach it validly)
   int passes = 0;
 };
 
