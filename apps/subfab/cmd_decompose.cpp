@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <iostream>
 #include <limits>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
@@ -16,6 +17,7 @@
 #include "command.h"
 #include "subfab/core/error.h"
 #include "subfab/decompose/decompose.h"
+#include "subfab/decompose/decompose_smoothed.h"
 #include "subfab/decompose/export_decomposition.h"
 #include "subfab/mesh/write_mesh.h"
 #include "subfab/view/write_assembly_sheet.h"
@@ -37,6 +39,7 @@ struct DecomposeArgs {
   double max_overhang = 0.0;
   double tolerance = 0.0;
   double tolerance_abs = std::numeric_limits<double>::infinity();
+  std::optional<double> smooth;  // --smooth [F]: smoothing cap, fraction of the diagonal
   bool no_view = false;
   RepairInputOptions repair;
   CommonOptions common;
@@ -55,6 +58,30 @@ Vec3 parse_machine(const std::string& text) {
   for (int k = 0; k < 3; ++k)
     if (!parse_positive_number(parts[static_cast<std::size_t>(k)], v[k])) throw fail();
   return v;
+}
+
+//! The "input"."smoothing" record of decomposition.json (and of --json).
+nlohmann::ordered_json smoothing_record(const SmoothedDecomposeReport& r, double cap) {
+  return {{"mesh", kRestoredInputFile},
+          {"smoothed_mesh", kSmoothedInputFile},
+          {"cap_fraction", cap},
+          {"num_blocks_smoothed", r.num_blocks_smoothed},
+          {"num_blocks", r.num_blocks},
+          {"max_deviation", r.max_deviation},
+          {"mean_deviation", r.mean_deviation},
+          {"max_deviation_fraction", r.fraction(r.max_deviation)},
+          {"mean_deviation_fraction", r.fraction(r.mean_deviation)},
+          {"hausdorff_error", r.deviation_error},
+          {"smoothed_max_deviation_fraction", r.fraction(r.smooth.hausdorff)},
+          {"smoothed_mean_deviation_fraction", r.fraction(r.smoothed_mean_deviation)},
+          {"num_vertices_restored", r.restore.num_restored},
+          {"num_vertices_at_smoothed", r.restore.num_at_smoothed},
+          {"num_vertices_held_on_box", r.restore.num_held_on_box},
+          {"num_vertices_held_back", r.restore.num_held_back},
+          {"num_restore_rounds", r.restore.num_rounds},
+          {"num_carve_rounds", r.num_carve_rounds},
+          {"smooth_seconds", r.smooth.seconds},
+          {"restore_seconds", r.restore_seconds}};
 }
 
 int run_decompose(const DecomposeArgs& args) {
@@ -76,7 +103,16 @@ int run_decompose(const DecomposeArgs& args) {
   const SolidInput solid = read_solid_input(args.mesh, args.repair, args.outdir, progress);
   const Mesh& mesh = solid.mesh;
   const nlohmann::ordered_json mesh_repair = mesh_repair_record(solid);
-  const DecomposeResult result = decompose(mesh, options);
+  std::optional<SmoothedDecomposeResult> smoothed;
+  nlohmann::ordered_json smoothing = nullptr;
+  if (args.smooth) {  // thesis 4.3.5: smooth, decompose, restore the details, carve again
+    SmoothedDecomposeOptions so;
+    so.decompose = options;
+    so.smooth.max_deviation = *args.smooth;
+    smoothed = decompose_smoothed(mesh, so);
+    smoothing = smoothing_record(smoothed->report, *args.smooth);
+  }
+  const DecomposeResult result = smoothed ? std::move(smoothed->decomposition) : decompose(mesh, options);
   std::vector<ExportedBlock> blocks;
   {
     StageScope stage(&progress, "export");
@@ -84,15 +120,19 @@ int run_decompose(const DecomposeArgs& args) {
     info.input_path = args.mesh;
     info.options = options;
     info.mesh_repair = mesh_repair;
+    info.smoothing = smoothing;
     blocks = export_decomposition(mesh, result, info, args.outdir);
-    // The repaired input (what the blocks decompose) next to the blocks; a
-    // stale one from an earlier run is removed.
-    const std::filesystem::path repaired_path = std::filesystem::path(args.outdir) / kRepairedInputFile;
-    if (result.repaired_input) {
-      write_mesh(*result.repaired_input, repaired_path);
-    } else {
-      std::error_code ec;
-      std::filesystem::remove(repaired_path, ec);
+    // The repaired or restored input (what the blocks decompose) next to the
+    // blocks; stale ones from an earlier run are removed.
+    const std::filesystem::path dir(args.outdir);
+    std::error_code ec;
+    for (const char* name : {kRepairedInputFile, kRestoredInputFile, kSmoothedInputFile})
+      std::filesystem::remove(dir / name, ec);
+    if (smoothed) {
+      write_mesh(*result.repaired_input, dir / kRestoredInputFile);
+      write_mesh(smoothed->smoothed, dir / kSmoothedInputFile);
+    } else if (result.repaired_input) {
+      write_mesh(*result.repaired_input, dir / kRepairedInputFile);
     }
   }
   const std::filesystem::path view_page = std::filesystem::path(args.outdir) / "view.html";
@@ -112,7 +152,20 @@ int run_decompose(const DecomposeArgs& args) {
       write_assembly_sheet(args.outdir, sheet);
     });
   }
-  if (result.repaired_input && !args.common.quiet) {
+  if (smoothed && !args.common.quiet) {
+    const SmoothedDecomposeReport& r = smoothed->report;
+    std::ostringstream msg;
+    msg << "SMOOTHED AND RESTORED (--smooth " << *args.smooth << "): the smoothed model (Hausdorff "
+        << r.fraction(r.smooth.hausdorff) << ", mean " << r.fraction(r.smoothed_mean_deviation)
+        << " x diagonal from the input) gave " << r.num_blocks_smoothed << " blocks; with its details restored, "
+        << r.num_blocks << " blocks decompose " << args.outdir << "/" << kRestoredInputFile
+        << ", not the input: deviation of the blocks from the input " << args.mesh << ": Hausdorff "
+        << r.max_deviation << " (" << r.fraction(r.max_deviation) << " x diagonal), mean " << r.mean_deviation
+        << " (" << r.fraction(r.mean_deviation) << " x diagonal); subfab validate checks the blocks against "
+        << kRestoredInputFile;
+    progress.warn(msg.str());
+  }
+  if (result.repaired_input && !smoothed && !args.common.quiet) {
     const RepairReport& r = result.repair;
     std::ostringstream msg;
     msg << "REPAIRED INPUT: " << r.num_features << " infeasible feature(s) (" << r.num_creases << " creases, "
@@ -166,7 +219,7 @@ int run_decompose(const DecomposeArgs& args) {
     j["num_cycle_splits"] = result.num_cycle_splits;
     j["num_merges"] = result.num_merges;
     j["num_refined_faces"] = result.num_refined_faces;
-    if (result.repaired_input)
+    if (result.repaired_input && !smoothed)
       j["repair"] = {{"mesh", (std::filesystem::path(args.outdir) / kRepairedInputFile).string()},
                      {"num_features", result.repair.num_features},
                      {"max_deviation", result.repair.max_deviation},
@@ -175,6 +228,7 @@ int run_decompose(const DecomposeArgs& args) {
     else
       j["repair"] = nullptr;
     j["mesh_repair"] = mesh_repair;
+    j["smoothing"] = smoothing;
     j["cover_optimal"] = result.cover_optimal;
     j["material_volume_fraction"] = input_volume > 0 ? total / input_volume : 0.0;
     j["min_block_volume_fraction"] = blocks.empty() || input_volume <= 0 ? 0.0 : smallest / input_volume;
@@ -232,6 +286,17 @@ void add_decompose_options(CLI::App& sub, DecomposeArgs& args) {
       ->check(CLI::NonNegativeNumber);
   sub.add_option("--tolerance-abs", args.tolerance_abs,
                  "Deviation allowed in model units (with --tolerance the smaller wins)")
+      ->check(CLI::NonNegativeNumber);
+  sub.add_option("--smooth", args.smooth,
+                 "Fewer blocks for a detailed model (thesis 4.3.5): smooth it (Taubin low-pass, as `subfab smooth`, "
+                 "each vertex moved at most F x the bounding-box diagonal; F defaults to 0.005 when omitted: write "
+                 "--smooth=F or put it after MESH), decompose the smoothed model, put the details back within its "
+                 "blocks' regions and milling directions, and carve the blocks again. The blocks then decompose "
+                 "OUTDIR/input_restored.obj (written, with OUTDIR/input_smoothed.obj), which subfab validate checks "
+                 "them against; the deviation from the input is measured and reported. Not with --tolerance or "
+                 "--max-overhang")
+      ->expected(0, 1)
+      ->default_str("0.005")
       ->check(CLI::NonNegativeNumber);
   sub.add_flag("--no-view", args.no_view, "Do not write OUTDIR/view.html (the 3D view in the browser) and OUTDIR/assembly.html (cut list and "
                "gluing order; `subfab assemble` writes it later, also in mm)");

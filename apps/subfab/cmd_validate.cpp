@@ -51,8 +51,11 @@ struct RecordedRepair {
 struct RecordedRepairs {
   std::optional<RecordedRepair> features;  // thin-feature repair (of the mesh below, when there is one)
   std::optional<RecordedRepair> mesh;      // --repair: the solid made of the input file
+  std::optional<RecordedRepair> restored;  // --smooth: the smoothed model with its details restored
   //! The one the blocks decompose (the last applied).
-  const RecordedRepair* decomposed() const { return features ? &*features : mesh ? &*mesh : nullptr; }
+  const RecordedRepair* decomposed() const {
+    return restored ? &*restored : features ? &*features : mesh ? &*mesh : nullptr;
+  }
 };
 
 //! Reads decomposition.json and the block files it lists.
@@ -81,6 +84,14 @@ std::vector<ValidationBlock> read_decomposition(const fs::path& outdir, Validati
                                     r.at("max_deviation_fraction").get<double>(),
                                     r.at("mean_deviation").get<double>(),
                                     "repaired with --repair: " + r.at("applied_steps").get<std::string>()};
+    }
+    if (input_json.contains("smoothing") && !input_json["smoothing"].is_null()) {
+      const Json& r = input_json["smoothing"];
+      repairs.restored = RecordedRepair{r.at("mesh").get<std::string>(), r.at("max_deviation").get<double>(),
+                                        r.at("max_deviation_fraction").get<double>(),
+                                        r.at("mean_deviation").get<double>(),
+                                        "smoothed (cap " + std::to_string(r.at("cap_fraction").get<double>()) +
+                                            " x diagonal) and details restored with --smooth"};
     }
     const Json& p = doc.at("parameters");
     if (p.contains("max_height") && !p["max_height"].is_null()) limits.max_height = p["max_height"].get<double>();
@@ -229,10 +240,12 @@ int run_validate(const ValidateArgs& args) {
     const Mesh original = std::move(input);
     input = read_mesh(fs::path(args.outdir) / repair->mesh);
     std::ostringstream note;
-    note << "NOTE: the decomposition is of the REPAIRED input " << (fs::path(args.outdir) / repair->mesh).string()
+    note << "NOTE: the decomposition is of the " << (repairs.restored ? "RESTORED (smoothed, details put back)" : "REPAIRED")
+         << " input " << (fs::path(args.outdir) / repair->mesh).string()
          << " (";
     double recorded = 0;  // the deviations add up (triangle inequality)
-    for (const auto* r : {repairs.mesh ? &*repairs.mesh : nullptr, repairs.features ? &*repairs.features : nullptr}) {
+    for (const auto* r : {repairs.mesh ? &*repairs.mesh : nullptr, repairs.features ? &*repairs.features : nullptr,
+                          repairs.restored ? &*repairs.restored : nullptr}) {
       if (!r) continue;
       if (recorded > 0) note << "; then ";
       note << r->what << ", recorded Hausdorff deviation " << r->max_deviation << " = " << r->max_deviation_fraction

@@ -244,6 +244,7 @@ std::vector<Block> carve_stages(const Mesh& solid, const std::vector<std::uint8_
   co.allowed_overhangs = refined_allowed;
   co.progress = progress;
   CarveResult carved = carve_blocks(result.canonical, ordered, co);
+  result.ordered_boxes = std::move(ordered);
   result.timings.carve += seconds_since(t);
   return std::move(carved.blocks);
 }

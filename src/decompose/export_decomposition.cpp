@@ -120,12 +120,14 @@ std::string decomposition_json(const Mesh& input, const DecomposeResult& result,
                   {"vertices", input.num_vertices()},
                   {"faces", input.num_faces()},
                   {"bbox_diagonal", diagonal},
-                  {"repair", repair_json(result, info)},
-                  {"mesh_repair", info.mesh_repair}};
-  // Which mesh the blocks decompose: the thin-feature repair's, else the
-  // repaired solid of --repair, else the input file.
+                  {"repair", info.smoothing.is_object() ? Json(nullptr) : repair_json(result, info)},
+                  {"mesh_repair", info.mesh_repair},
+                  {"smoothing", info.smoothing}};
+  // Which mesh the blocks decompose: the restored solid of --smooth, else the
+  // thin-feature repair's, else the repaired solid of --repair, else the input file.
   doc["input"]["decomposed_mesh"] =
-      result.repaired_input ? Json(kRepairedInputFile)
+      info.smoothing.is_object() ? Json(info.smoothing.at("mesh"))
+      : result.repaired_input    ? Json(kRepairedInputFile)
                             : (info.mesh_repair.is_object() ? Json(info.mesh_repair.at("mesh")) : Json(info.input_path));
   Json rot = Json::array();
   for (int r = 0; r < 3; ++r) rot.push_back(Json::array({result.rotation(r, 0), result.rotation(r, 1), result.rotation(r, 2)}));

@@ -73,6 +73,8 @@ struct DecomposeResult {
   double max_height = std::numeric_limits<double>::infinity();  // the height limit used (model units)
   double max_overhang_deg = 0.0;  // the overhang allowance used (degrees; 0 = exact)
   std::vector<Block> blocks; // the blocks, canonical frame
+  std::vector<HeightBox> ordered_boxes;  // the boxes the last carve used, in carve order (canonical frame;
+                                         // Block::source_box indexes them): decompose_smoothed() carves again
   double tolerance = 0.0;    // the deviation allowed (model units; 0 = exact: every block inside the input)
   std::vector<char> filled;  // per block (empty when tolerance = 0): 1 when it sticks out of the input (a milled
                              // shape holding material under an undercut, within the tolerance)

@@ -17,8 +17,14 @@
 //!              "mesh_repair": null, or after `decompose --repair` changed the input the record of
 //!              mesh_repair_to_json() plus "mesh": "input_mesh_repaired.obj" (OUTDIR-relative): the solid
 //!              made of the input file, which "vertices", "faces" and "repair" then describe,
-//!              "decomposed_mesh": the mesh the blocks decompose (the input path, "input_mesh_repaired.obj"
-//!              or "input_repaired.obj")},
+//!              "smoothing": null, or after `decompose --smooth` (decompose_smoothed(), thesis 4.3.5) {"mesh":
+//!              "input_restored.obj" (the restored solid the blocks decompose), "smoothed_mesh":
+//!              "input_smoothed.obj", "cap_fraction", "num_blocks_smoothed", "num_blocks", "max_deviation",
+//!              "mean_deviation" (blocks' union vs the input, model units), "max_deviation_fraction",
+//!              "mean_deviation_fraction", "hausdorff_error", the smoothed model's deviations and the
+//!              restoration's counts},
+//!              "decomposed_mesh": the mesh the blocks decompose (the input path, "input_mesh_repaired.obj",
+//!              "input_repaired.obj" or "input_restored.obj")},
 //!    "rotation": 3x3 (canonical = rotation x input),
 //!    "parameters": {"max_height_fraction", "max_height", "machine", "orient", "grid_factor"},
 //!    "blocks": [{"id", "mesh", "machine_mesh", "direction" (unit, input coordinates),
@@ -44,6 +50,10 @@ namespace subfab {
 
 //! File name (in OUTDIR) of the repaired input, named by "input"."repair"."mesh".
 inline constexpr const char* kRepairedInputFile = "input_repaired.obj";
+//! File names (in OUTDIR) of `decompose --smooth`'s restored solid (what the blocks decompose, named by
+//! "input"."smoothing"."mesh") and of the smoothed model it was decomposed as.
+inline constexpr const char* kRestoredInputFile = "input_restored.obj";
+inline constexpr const char* kSmoothedInputFile = "input_smoothed.obj";
 
 //! One block as exported (input coordinates).
 struct ExportedBlock {
@@ -79,6 +89,9 @@ struct ExportInfo {
   DecomposeOptions options; // the options used (for "parameters")
   nlohmann::ordered_json mesh_repair = nullptr;  // "input"."mesh_repair": null, or the record of the
                                                  // repair (`decompose --repair`) with its "mesh"
+  nlohmann::ordered_json smoothing = nullptr;    // "input"."smoothing": null, or the record of
+                                                 // `decompose --smooth` (decompose_smoothed()) with its "mesh", the
+                                                 // restored solid the blocks decompose (result.repaired_input)
 };
 
 //! The decomposition.json document (as text, 2-space indented, fields in the

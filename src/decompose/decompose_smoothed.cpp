@@ -1,0 +1,304 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "subfab/decompose/decompose_smoothed.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "geometry/hausdorff_distance.h"
+#include "geometry/rotate_accurately.h"
+#include "geometry/surface_deviation.h"
+#include "subfab/checks/require_closed_solid.h"
+#include "subfab/core/error.h"
+#include "subfab/core/parallel.h"
+#include "subfab/decompose/carve_blocks.h"
+#include "subfab/decompose/merge_blocks.h"
+#include "subfab/decompose/orient_mesh.h"
+#include "subfab/validate/validate_decomposition.h"
+
+namespace subfab {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+void check_options(const SmoothedDecomposeOptions& o) {
+  if (o.decompose.tolerance_fraction != 0 || o.decompose.tolerance_abs < std::numeric_limits<double>::infinity())
+    throw InvalidArgumentError("--smooth decomposes the smoothed model exactly and restores its details: it cannot "
+                               "be combined with --tolerance or --tolerance-abs");
+  if (o.decompose.max_overhang_deg != 0)
+    throw InvalidArgumentError("--smooth makes exact height-field blocks: it cannot be combined with --max-overhang");
+  if (o.max_carve_rounds < 1) throw InvalidArgumentError("decompose_smoothed: max_carve_rounds must be >= 1");
+  if (!(o.hausdorff_error > 0) || !std::isfinite(o.hausdorff_error))
+    throw InvalidArgumentError("decompose_smoothed: the Hausdorff error bound must be a positive fraction");
+}
+
+BoundingBox box_of(const Mesh& m) { return bounding_box(m); }
+
+bool boxes_meet(const BoundingBox& a, const BoundingBox& b) {
+  return (a.min.array() <= b.max.array()).all() && (b.min.array() <= a.max.array()).all();
+}
+
+//! The boxes grown by `margin` on every side but the base (its -axis side),
+//! side by side, where the added slab meets no later box in carve order (no
+//! later block loses material, so none gets a new face) and the box still
+//! fits the limits: the room the restoration may put details back in (the
+//! boxes were shrunk to the smoothed surface, 4.3.4).
+std::vector<HeightBox> room_boxes(const std::vector<HeightBox>& boxes, double margin, double max_height,
+                                  const Vec3& machine) {
+  std::vector<HeightBox> out = boxes;
+  for (std::size_t i = 0; i < boxes.size(); ++i) {
+    const int k = axis_dimension(boxes[i].axis);
+    for (int dim = 0; dim < 3; ++dim)
+      for (const bool upper : {false, true}) {
+        if (dim == k && upper != (axis_sign(boxes[i].axis) > 0)) continue;  // the base side
+        Box3 grown = out[i].box, slab = out[i].box;
+        if (upper) {
+          grown.max[dim] += margin;
+          slab.min[dim] = out[i].box.max[dim];
+          slab.max[dim] = grown.max[dim];
+        } else {
+          grown.min[dim] -= margin;
+          slab.max[dim] = out[i].box.min[dim];
+          slab.min[dim] = grown.min[dim];
+        }
+        if (!box_fits_limits(grown, boxes[i].axis, max_height, machine)) continue;
+        bool free = true;
+        for (std::size_t j = i + 1; j < boxes.size() && free; ++j) free = !slab.overlaps(boxes[j].box);
+        if (free) out[i].box = grown;
+      }
+  }
+  return out;
+}
+
+//! Faces of `solid` with a point (corners, edge midpoints, centroid) farther
+//! than `tolerance` from every block surface: the restored surface must lie
+//! on the blocks (it leaves the union of the boxes otherwise).
+std::vector<int> uncovered_faces(const Mesh& solid, const std::vector<Block>& blocks, double tolerance) {
+  Mesh all;
+  for (const Block& b : blocks) {
+    const int offset = static_cast<int>(all.vertices.size());
+    all.vertices.insert(all.vertices.end(), b.mesh.vertices.begin(), b.mesh.vertices.end());
+    for (const Triangle& t : b.mesh.faces) all.faces.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+  }
+  std::vector<char> bad(solid.faces.size(), 0);
+  if (all.faces.empty()) {
+    std::fill(bad.begin(), bad.end(), 1);
+  } else {
+    const detail::SurfaceDistance distance(all);
+    parallel_for(0, solid.faces.size(), [&](std::size_t f) {
+      const Triangle& t = solid.faces[f];
+      const Vec3& a = solid.vertices[static_cast<std::size_t>(t[0])];
+      const Vec3& b = solid.vertices[static_cast<std::size_t>(t[1])];
+      const Vec3& c = solid.vertices[static_cast<std::size_t>(t[2])];
+      for (const Vec3& p : {a, b, c, Vec3((a + b) / 2), Vec3((b + c) / 2), Vec3((c + a) / 2), Vec3((a + b + c) / 3)})
+        if (distance(p) > tolerance) {
+          bad[f] = 1;
+          return;
+        }
+    });
+  }
+  std::vector<int> out;
+  for (std::size_t f = 0; f < bad.size(); ++f)
+    if (bad[f]) out.push_back(static_cast<int>(f));
+  return out;
+}
+
+//! Vertices to hold at their smoothed positions after a failed carve: the
+//! corners of the uncovered faces, and for each failing block the corners of
+//! the restored faces near it that face away from its axis (all the moved
+//! vertices near it when there are none).
+std::vector<int> vertices_to_hold(const Mesh& restored, const Mesh& smoothed, const std::vector<Block>& blocks,
+                                  const std::vector<std::size_t>& failed, const std::vector<int>& uncovered) {
+  std::vector<int> out;
+  for (int f : uncovered)
+    for (int v : restored.faces[static_cast<std::size_t>(f)]) out.push_back(v);
+  for (std::size_t b : failed) {
+    const Block& block = blocks[b];
+    BoundingBox box = box_of(block.mesh);
+    const double pad = 1e-9 * std::max(1.0, box.diagonal());
+    box.min.array() -= pad;
+    box.max.array() += pad;
+    const Vec3 d = axis_direction(block.axis);
+    std::vector<int> near, away;
+    for (std::size_t f = 0; f < restored.faces.size(); ++f) {
+      BoundingBox fb;
+      for (int v : restored.faces[f]) fb.extend(restored.vertices[static_cast<std::size_t>(v)]);
+      if (!boxes_meet(fb, box)) continue;
+      for (int v : restored.faces[f]) near.push_back(v);
+      if (face_normal_scaled(restored, f).dot(d) < 0)
+        for (int v : restored.faces[f]) away.push_back(v);
+    }
+    const auto moved = [&](int v) {
+      return restored.vertices[static_cast<std::size_t>(v)] != smoothed.vertices[static_cast<std::size_t>(v)];
+    };
+    const bool any_away = std::any_of(away.begin(), away.end(), moved);
+    for (int v : any_away ? away : near) out.push_back(v);
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+}  // namespace
+
+SmoothedDecomposeResult decompose_smoothed(const Mesh& input_mesh, const SmoothedDecomposeOptions& options) {
+  check_options(options);
+  Progress* progress = options.decompose.progress;
+  SmoothedDecomposeResult out;
+  SmoothedDecomposeReport& report = out.report;
+
+  // 1. smooth (4.3.5, first step)
+  SmoothOptions so = options.smooth;
+  so.progress = progress;
+  SmoothResult smoothed = smooth_for_decomposition(input_mesh, so);  // InvalidMeshError: not a solid
+  report.smooth = smoothed.report;
+  report.bbox_diagonal = smoothed.report.bbox_diagonal;
+  Mesh input = input_mesh;
+  require_closed_solid(input);  // the same (possibly flipped) solid the smoothing worked on
+
+  // 2. decompose the smoothed model
+  DecomposeResult result = decompose(smoothed.mesh, options.decompose);
+  if (result.repaired_input)
+    throw AlgorithmError("the smoothed model (cap " + std::to_string(options.smooth.max_deviation) +
+                         " x diagonal) still has " + std::to_string(result.repair.num_features) +
+                         " feature(s) no height-field block can cover in the chosen frame; smooth it more (a larger "
+                         "--smooth cap) or decompose without --smooth (the local repair handles them then)");
+  report.num_blocks_smoothed = result.blocks.size();
+  const auto start = Clock::now();
+  StageScope stage(progress, "restore");
+
+  // 3.-4. restore, carve again, check
+  const std::size_t n = input.num_vertices();
+  Mesh smoothed_c;  // the smoothed model in the canonical frame, the input's connectivity
+  smoothed_c.vertices.assign(result.canonical.vertices.begin(),
+                             result.canonical.vertices.begin() + static_cast<std::ptrdiff_t>(n));
+  smoothed_c.faces = input.faces;
+  const Mesh original_c = rotate_into_frame(input, result.rotation, OrientOptions{}.snap_tolerance);
+  const Vec3 machine = options.decompose.machine ? *options.decompose.machine
+                                                 : Vec3::Constant(std::numeric_limits<double>::infinity());
+  const double diagonal = bounding_box(original_c).diagonal();
+  // Room for the details: the boxes grown by the smoothing's largest move.
+  const std::vector<HeightBox> room =
+      room_boxes(result.ordered_boxes, report.smooth.max_displacement * (1 + 1e-6), result.max_height, machine);
+  std::vector<int> held;
+  RestoreDetailsResult restored;
+  std::vector<Block> blocks;
+  for (int round = 0;; ++round) {
+    RestoreDetailsOptions ro = options.restore;
+    ro.held = held.empty() ? nullptr : &held;
+    ro.progress = progress;
+    ro.room = &room;
+    restored = restore_details(original_c, smoothed_c, result.ordered_boxes, ro);
+    ++report.num_carve_rounds;
+    CarveOptions co;
+    co.max_height = result.max_height;
+    co.machine_size = machine;
+    co.progress = progress;
+    blocks = carve_blocks(restored.mesh, room, co).blocks;
+    std::vector<std::size_t> failed;
+    for (std::size_t b = 0; b < blocks.size(); ++b)
+      if (!is_height_field(blocks[b].mesh, axis_direction(blocks[b].axis))) failed.push_back(b);
+    const std::vector<int> uncovered = uncovered_faces(restored.mesh, blocks, 1e-9 * diagonal);
+    report.num_failed_blocks += failed.size();
+    report.num_uncovered_faces += uncovered.size();
+    if (failed.empty() && uncovered.empty()) break;
+    std::vector<int> more = vertices_to_hold(restored.mesh, smoothed_c, blocks, failed, uncovered);
+    if (round + 1 >= options.max_carve_rounds) {  // hold everything near the failures
+      for (std::size_t v = 0; v < n; ++v)
+        if (restored.mesh.vertices[v] != smoothed_c.vertices[v]) {
+          const Vec3& p = restored.mesh.vertices[v];
+          for (std::size_t b : failed) {
+            const BoundingBox box = box_of(blocks[b].mesh);
+            if ((p.array() >= box.min.array()).all() && (p.array() <= box.max.array()).all())
+              more.push_back(static_cast<int>(v));
+          }
+        }
+    }
+    const std::size_t before = held.size();
+    held.insert(held.end(), more.begin(), more.end());
+    std::sort(held.begin(), held.end());
+    held.erase(std::unique(held.begin(), held.end()), held.end());
+    if (progress)
+      progress->info(std::to_string(failed.size()) + " block(s) of the restored solid failed the checks and " +
+                     std::to_string(uncovered.size()) + " restored face(s) are not on the blocks; holding " +
+                     std::to_string(held.size() - before) + " more vertices at their smoothed positions");
+    if (held.size() == before)
+      throw AlgorithmError("restoring the details: " + std::to_string(failed.size()) + " block(s) fail and " +
+                           std::to_string(uncovered.size()) +
+                           " face(s) are not covered with every vertex near them at its smoothed position "
+                           "(internal error; please report it with the input)");
+  }
+  report.restore = restored.report;
+  report.num_held = held.size();
+
+  // 5. merge (4.3.4 post-processing)
+  {
+    MergeOptions mo;
+    mo.max_height = result.max_height;
+    mo.machine_size = machine;
+    mo.progress = progress;
+    if (options.decompose.merge) {
+      MergeResult merged = merge_blocks(std::move(blocks), mo);
+      result.num_merges = merged.num_merges;
+      blocks = std::move(merged.blocks);
+    }
+  }
+  report.num_blocks = blocks.size();
+
+  // The restored solid in input coordinates (what the blocks decompose).
+  Mesh restored_input;
+  restored_input.faces = input.faces;
+  restored_input.vertices.reserve(n);
+  const Eigen::Matrix3d back = result.rotation.transpose();
+  for (std::size_t v = 0; v < n; ++v)
+    restored_input.vertices.push_back(restored.mesh.vertices[v] == original_c.vertices[v]
+                                          ? input.vertices[v]
+                                          : detail::rotate_accurately(back, restored.mesh.vertices[v]));
+  require_closed_solid_result(restored_input, "the restored solid is not a valid solid in the input frame: ",
+                              "; internal error, please report it with the input");
+
+  // 6. deviation of the blocks' union (the restored solid) from the input
+  report.deviation_error = options.hausdorff_error * report.bbox_diagonal;
+  const auto whole_surface_mean = [&](const Mesh& modified, double* hausdorff) {
+    const std::vector<int> changed = detail::faces_not_in(modified, input);
+    if (changed.empty()) return 0.0;
+    const detail::SurfaceDeviation d =
+        detail::surface_deviation(input, input, modified, changed, std::max(report.deviation_error, 1e-300));
+    if (hausdorff) *hausdorff = d.hausdorff;
+    double changed_area = 0;
+    for (int f : changed) changed_area += face_area(modified, static_cast<std::size_t>(f));
+    const double area = surface_area(modified);
+    return area > 0 ? d.mean * changed_area / area : 0.0;
+  };
+  report.mean_deviation = whole_surface_mean(restored_input, &report.max_deviation);
+  report.smoothed_mean_deviation = whole_surface_mean(smoothed.mesh, nullptr);
+
+  result.blocks = std::move(blocks);
+  result.ordered_boxes = room;
+  result.canonical = restored.mesh;
+  result.num_input_vertices = n;
+  result.repaired_input = std::move(restored_input);
+  report.restore_seconds = seconds_since(start);
+  result.timings.total += report.restore_seconds + report.smooth.seconds;
+  if (progress) {
+    std::ostringstream msg;
+    msg << "smoothed (cap " << options.smooth.max_deviation << " x diagonal): " << report.num_blocks_smoothed
+        << " blocks; details restored: " << report.num_blocks << " blocks; deviation of the blocks from the input: "
+        << "Hausdorff " << report.max_deviation << " (" << report.fraction(report.max_deviation)
+        << " x diagonal), mean " << report.mean_deviation << " (" << report.fraction(report.mean_deviation)
+        << "; smoothed model: Hausdorff " << report.fraction(report.smooth.hausdorff) << ", mean "
+        << report.fraction(report.smoothed_mean_deviation) << ")";
+    progress->info(msg.str());
+  }
+  out.decomposition = std::move(result);
+  out.smoothed = std::move(smoothed.mesh);
+  return out;
+}
+
+}  // namespace subfab
