@@ -36,8 +36,8 @@ from bench_common import ROOT, add_common_arguments, table_4_1_rows
 THESIS_OVERHANG_DEG = {"Airplane": 23.0, "Cube Spike": 0.0, "Cube Spike (no height limit)": 14.0, "hu": 43.0,
                        "Moai": 3.5, "Max Planck": 42.0, "Kitten": 27.0}
 
-# Short names of the seven checks of `subfab validate`, in order.
-CHECK_NAMES = ["solid", "hfield", "overlap", "inside", "cover", "limits", "machine"]
+# Short names of the checks of `subfab validate`, in order (the tenth only within a tolerance).
+CHECK_NAMES = ["solid", "hfield", "overlap", "inside", "cover", "limits", "machine", "float32", "sliver", "tolerance"]
 
 
 def peak_rss_mb(stderr_text):
@@ -159,6 +159,9 @@ def run_one(args, run):
         vj = json.loads(vout)
         res["checks"] = [{"name": c["name"], "passed": c["passed"], "summary": c["summary"],
                           "num_failures": c["num_failures"], "failures": c["failures"][:5]} for c in vj["checks"]]
+        if "thickness" in vj:
+            res["min_thickness_fraction"] = vj["thickness"]["min_thickness_fraction"]
+            res["num_slivers"] = vj["thickness"]["num_slivers"]
     except (ValueError, KeyError):
         res["checks"] = None
         res["error"] = last_error_line(verr)
@@ -180,6 +183,7 @@ def table(results):
         checks = r.get("checks")
         if checks:
             marks = ["ok" if c["passed"] else f"FAIL({c['num_failures']})" for c in checks]
+            marks += ["-"] * (len(CHECK_NAMES) - len(marks))  # no tolerance check without a tolerance
         else:
             marks = ["-"] * len(CHECK_NAMES)
         peak = max([x for x in (r.get("peak_mb"), r.get("validate_peak_mb")) if x is not None], default=None)

@@ -22,7 +22,7 @@ ALLOWED = {
     "mesh": {"core"},
     "checks": {"core", "mesh"},
     "geometry": {"core", "mesh"},
-    "validate": {"core", "mesh", "geometry"},
+    "validate": {"core", "mesh", "checks", "geometry"},
     "fidelity": {"core", "mesh", "geometry", "checks"},
     "repair": {"core", "mesh", "geometry", "checks"},
     "decompose": {"core", "mesh", "checks", "geometry", "validate", "fidelity"},

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //! `subfab validate MESH OUTDIR`: checks a decomposition written by
-//! `subfab decompose` against its input (the seven checks of
+//! `subfab decompose` against its input (the checks of
 //! validate_decomposition.h). Prints a table per check; exit 0 when all
 //! pass, 3 when one fails, 2 when the input or the folder cannot be read.
 #include <algorithm>
@@ -173,6 +173,64 @@ void print_milled(std::ostream& out, const MilledShapesReport& r, double diagona
       << r.collisions.size() << " collisions (" << r.num_pairs_checked << " pairs checked)\n";
 }
 
+//! Every block's thickness (check 9) for the text report, several per line.
+void print_thickness(std::ostream& out, const ValidationReport& r, double diagonal) {
+  const double d = std::max(diagonal, 1e-300);
+  if (r.slivers.empty()) return;
+  std::size_t thinnest = 0;
+  for (std::size_t i = 0; i < r.slivers.size(); ++i)
+    if (r.slivers[i].thickness.thickness < r.slivers[thinnest].thickness.thickness) thinnest = i;
+  out << "  block thickness (mean chord along the thinnest frame axis, x diagonal; * = below "
+      << sci(r.sliver_thickness / d) << ", ! = sliver):";
+  for (std::size_t i = 0; i < r.slivers.size(); ++i) {
+    const SliverMeasure& m = r.slivers[i];
+    if (i % 8 == 0) out << "\n   ";
+    char buf[64];
+    std::snprintf(buf, sizeof buf, " %03zu %.2e%s", i, m.thickness.thickness / d, m.sliver ? "!" : m.measured ? "*" : " ");
+    out << buf;
+  }
+  out << "\n  thinnest block: " << block_label(thinnest) << ", " << sci(r.slivers[thinnest].thickness.thickness / d, 3)
+      << " x diagonal (" << r.slivers[thinnest].thickness.thickness << " model units)\n";
+  for (std::size_t i = 0; i < r.slivers.size(); ++i) {
+    const SliverMeasure& m = r.slivers[i];
+    if (!m.measured) continue;
+    out << "    " << block_label(i) << ": " << sci(m.thickness.thickness / d) << " x diagonal thick; on "
+        << m.num_chords << " lines along its thinnest axis the block is " << sci(m.block_chord / d)
+        << ", the model " << sci(m.model_chord / d) << (m.sliver ? " (sliver)" : " (the model is that thin)")
+        << "\n";
+  }
+}
+
+//! The "thickness" object of --json (check 9).
+nlohmann::ordered_json thickness_json(const ValidationReport& r, double diagonal) {
+  const double d = std::max(diagonal, 1e-300);
+  nlohmann::ordered_json blocks = nlohmann::ordered_json::array();
+  double thinnest = r.slivers.empty() ? 0.0 : std::numeric_limits<double>::infinity();
+  std::size_t num_slivers = 0;
+  for (std::size_t i = 0; i < r.slivers.size(); ++i) {
+    const SliverMeasure& m = r.slivers[i];
+    thinnest = std::min(thinnest, m.thickness.thickness);
+    num_slivers += m.sliver ? 1 : 0;
+    nlohmann::ordered_json b = {{"id", i},
+                                {"thickness", m.thickness.thickness},
+                                {"thickness_fraction", m.thickness.thickness / d},
+                                {"axis", {m.thickness.axis.x(), m.thickness.axis.y(), m.thickness.axis.z()}},
+                                {"sliver", m.sliver}};
+    if (m.measured) {
+      b["num_chords"] = m.num_chords;
+      b["block_chord"] = m.block_chord;
+      b["model_chord"] = m.model_chord;
+    }
+    blocks.push_back(b);
+  }
+  return {{"min_thickness", thinnest},
+          {"min_thickness_fraction", thinnest / d},
+          {"sliver_threshold", r.sliver_thickness},
+          {"sliver_threshold_fraction", r.sliver_thickness / d},
+          {"num_slivers", num_slivers},
+          {"blocks", blocks}};
+}
+
 //! The "milled_shapes" object of --json.
 nlohmann::ordered_json milled_json(const MilledShapesReport& r, double diagonal) {
   const double d = std::max(diagonal, 1e-300);
@@ -271,7 +329,7 @@ int run_validate(const ValidateArgs& args) {
     note << "NOTE: decomposition within a tolerance of " << tolerance_fraction << " x diagonal = "
          << options.tolerance << " (" << (args.tolerance ? "--tolerance" : "as recorded")
          << "): blocks may stick out of the input (check 4), samples within it count as covered (check 5), "
-            "and check 8 measures the deviation of the model made";
+            "and check 10 measures the deviation of the model made";
     tolerance_note = note.str();
     if (!args.common.quiet) progress.warn(tolerance_note);
   }
@@ -306,6 +364,7 @@ int run_validate(const ValidateArgs& args) {
                         {"num_failures", c.num_failures},
                         {"failures", c.failures}});
     j["checks"] = checks;
+    j["thickness"] = thickness_json(report, diagonal);
     j["milled_shapes"] = milled_json(report.milled, diagonal);
     std::cout << j.dump(2) << "\n";
   } else {
@@ -322,6 +381,7 @@ int run_validate(const ValidateArgs& args) {
       if (c.num_failures > c.failures.size())
         out << "           ... and " << (c.num_failures - c.failures.size()) << " more\n";
     }
+    print_thickness(out, report, diagonal);
     print_milled(out, report.milled, diagonal);
     out << (report.passed() ? "all checks passed\n" : "validation FAILED\n");
     std::cout << out.str();
@@ -349,7 +409,10 @@ const RegisterCommand kRegisterValidate(make_command<ValidateArgs>(
     "n.d < -1e-3 only on the base); (3) no overlaps (exact, <= 1e-6 of the smaller block); (4) inside "
     "the input (exact, <= 1e-6 of the block outside); (5) the input surface covered (20000+ samples "
     "within 1e-5 x diagonal of a block); (6) height and machine limits; (7) machine meshes are the "
-    "blocks moved rigidly. When decompose repaired infeasible features (decomposition.json names "
+    "blocks moved rigidly; (8) machine meshes stay closed solids without self-intersections in single "
+    "precision (float32, as STL stores them); (9) no slivers: no block thinner than max(1e-4 x diagonal, "
+    "tolerance) where the model is thicker (thickness = mean chord length along the block's thinnest frame "
+    "axis; each block's is printed); (10, within a tolerance) the deviation of the model made. When decompose repaired infeasible features (decomposition.json names "
     "OUTDIR/input_repaired.obj), checks 4 and 5 use the repaired input and say so, with the recorded "
     "deviation. Then, informational (never a failure): each block's milled shape (what a 3-axis machine "
     "makes of it: everything between its base and its top surface along its direction), with the filled "

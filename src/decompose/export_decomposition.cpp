@@ -9,9 +9,11 @@
 #include <cstdio>
 #include <fstream>
 
+#include "decompose/single_precision_cleanup.h"
 #include "geometry/rotate_accurately.h"
 #include "subfab/core/error.h"
 #include "subfab/decompose/finalize_blocks.h"
+#include "subfab/validate/block_thickness.h"
 #include "subfab/validate/validate_decomposition.h"
 #include "subfab/mesh/write_mesh.h"
 
@@ -92,6 +94,17 @@ std::vector<ExportedBlock> make_exported_blocks(const Mesh& input, const Decompo
     }
     const Vec3 shift = -mb.min;
     for (Vec3& v : e.machine_mesh.vertices) v += shift;
+    // The STL stores float32: make sure the rounded mesh is still a solid.
+    const detail::SinglePrecisionCleanup clean = detail::clean_single_precision(e.machine_mesh, e.mesh);
+    if (progress && (clean.num_collapsed > 0 || clean.num_nudged > 0 || !clean.ok)) {
+      char buf[256];
+      std::snprintf(buf, sizeof buf,
+                    "block %zu: in single precision (STL) %zu vertices collapsed, %zu faces removed, %zu vertices "
+                    "rounded the other way%s",
+                    out.size(), clean.num_collapsed, clean.num_faces_removed, clean.num_nudged,
+                    clean.ok ? "" : "; its STL is still not a solid (validate check 8 will fail)");
+      progress->warn(buf);
+    }
     e.machine_transform.setIdentity();
     e.machine_transform.topLeftCorner<3, 3>() = to_machine;
     e.machine_transform.topRightCorner<3, 1>() = shift;
@@ -103,6 +116,7 @@ std::vector<ExportedBlock> make_exported_blocks(const Mesh& input, const Decompo
     }
     e.base_offset = lo;
     e.volume = signed_volume(e.mesh);
+    e.thickness = block_thickness(e.mesh, to_machine).thickness;
     e.max_overhang_deg = overhang_angle_deg(check_height_field(e.mesh, e.direction).steepest_cosine);
     out.push_back(std::move(e));
   }
@@ -143,6 +157,7 @@ std::string decomposition_json(const Mesh& input, const DecomposeResult& result,
                        {"tolerance_fraction", diagonal > 0 ? result.tolerance / diagonal : 0.0}};
   Json list = Json::array();
   double total = 0.0, smallest = std::numeric_limits<double>::infinity(), steepest = 0.0;
+  double thinnest = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < blocks.size(); ++i) {
     const ExportedBlock& b = blocks[i];
     Json m = Json::array();
@@ -157,17 +172,21 @@ std::string decomposition_json(const Mesh& input, const DecomposeResult& result,
                     {"base_offset", b.base_offset},
                     {"height", b.height},
                     {"volume", b.volume},
+                    {"thickness", b.thickness},
                     {"max_overhang_deg", b.max_overhang_deg},
                     {"bbox", {{"min", vec_json(b.bbox.min)}, {"max", vec_json(b.bbox.max)}}},
                     {"machine_transform", m}});
     total += b.volume;
     smallest = std::min(smallest, b.volume);
+    thinnest = std::min(thinnest, b.thickness);
     steepest = std::max(steepest, b.max_overhang_deg);
   }
   doc["blocks"] = list;
   doc["summary"] = {{"num_blocks", blocks.size()},
                     {"material_volume_fraction", input_volume > 0 ? total / input_volume : 0.0},
                     {"min_block_volume_fraction", blocks.empty() || input_volume <= 0 ? 0.0 : smallest / input_volume},
+                    {"min_thickness", blocks.empty() ? 0.0 : thinnest},
+                    {"min_thickness_fraction", blocks.empty() || diagonal <= 0 ? 0.0 : thinnest / diagonal},
                     {"max_overhang_deg", steepest},
                     {"num_tolerance_merges", result.num_tolerance_merges},
                     {"num_allowed_faces", result.num_allowed_faces},

@@ -3,6 +3,8 @@
 // driver of all seven; the exact booleans and the coverage distances are in
 // validate_booleans.cpp.
 #include "subfab/validate/validate_decomposition.h"
+#include "validate/box_separation.h"
+#include "subfab/validate/check_single_precision.h"
 #include "subfab/validate/measure_fill_deviation.h"
 
 #include <algorithm>
@@ -10,7 +12,9 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <memory>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -228,21 +232,79 @@ ValidationReport validate_decomposition(const Mesh& input, const std::vector<Val
         if ((boxes[i].min.array() < boxes[j].max.array()).all() && (boxes[j].min.array() < boxes[i].max.array()).all())
           pairs.emplace_back(i, j);
     std::vector<double> vol(pairs.size(), 0.0);
-    std::vector<char> bounded(pairs.size(), 0);  // settled by overlap_volume_bound(), no boolean
+    std::vector<char> bounded(pairs.size(), 0);  // settled by a rigorous bound, no boolean
     std::vector<std::string> errors(pairs.size());
-    std::atomic<std::size_t> done{0};
+    // The frames of the bounds: the input frame and each block's machine
+    // frame (the canonical frame, where blocks meet on axis-aligned planes).
+    std::vector<Eigen::Matrix3d> frames = {Eigen::Matrix3d::Identity()};
+    std::vector<std::size_t> frame_of(n, 0);
+    for (std::size_t i = 0; i < n; ++i) {
+      const Eigen::Matrix3d rot = blocks[i].machine_transform.topLeftCorner<3, 3>();
+      if ((rot.transpose() * rot - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-9) continue;
+      const auto it = std::find(frames.begin(), frames.end(), rot);
+      frame_of[i] = static_cast<std::size_t>(it - frames.begin());
+      if (it == frames.end()) frames.push_back(rot);
+    }
+    const auto pair_frames = [&](std::size_t p) {
+      std::vector<std::size_t> f = {0, frame_of[pairs[p].first], frame_of[pairs[p].second]};
+      std::sort(f.begin(), f.end());
+      f.erase(std::unique(f.begin(), f.end()), f.end());
+      return f;
+    };
+    // 1. the slab bound (one separating plane of a frame)
     parallel_for(0, pairs.size(), [&](std::size_t p) {
-      const ValidationBlock& a = blocks[pairs[p].first];
-      const ValidationBlock& b = blocks[pairs[p].second];
-      // A rigorous bound in the input frame or either block's machine frame
-      // (the canonical frame, where blocks meet on axis-aligned planes).
-      double bound = overlap_volume_bound(a.mesh, b.mesh, Eigen::Matrix3d::Identity());
-      bound = std::min(bound, overlap_volume_bound(a.mesh, b.mesh, a.machine_transform.topLeftCorner<3, 3>()));
-      bound = std::min(bound, overlap_volume_bound(a.mesh, b.mesh, b.machine_transform.topLeftCorner<3, 3>()));
+      const Mesh& a = blocks[pairs[p].first].mesh;
+      const Mesh& b = blocks[pairs[p].second].mesh;
+      double bound = std::numeric_limits<double>::infinity();
+      for (std::size_t f : pair_frames(p)) bound = std::min(bound, overlap_volume_bound(a, b, frames[f]));
       const double smaller = std::min(std::abs(volumes[pairs[p].first]), std::abs(volumes[pairs[p].second]));
       if (bound <= options.overlap_tolerance * smaller) {
         vol[p] = bound;
         bounded[p] = 1;
+      }
+    });
+    // 2. the box bound (one block stays out of the other's bounding box), on
+    // the blocks seen in the frames the remaining pairs need
+    std::map<std::pair<std::size_t, std::size_t>, std::unique_ptr<detail::FramedBlock>> framed;  // (block, frame)
+    for (std::size_t p = 0; p < pairs.size(); ++p)
+      if (!bounded[p])
+        for (std::size_t f : pair_frames(p)) {
+          framed[{pairs[p].first, f}];
+          framed[{pairs[p].second, f}];
+        }
+    {
+      std::vector<std::pair<const std::pair<std::size_t, std::size_t>, std::unique_ptr<detail::FramedBlock>>*> slots;
+      for (auto& entry : framed) slots.push_back(&entry);
+      parallel_for(0, slots.size(), [&](std::size_t k) {
+        try {
+          slots[k]->second = std::make_unique<detail::FramedBlock>(blocks[slots[k]->first.first].mesh,
+                                                                   frames[slots[k]->first.second]);
+        } catch (const std::exception&) {
+          // no box bound for this block (the booleans decide its pairs)
+        }
+      });
+    }
+    std::size_t num_box_bounded = 0;
+    std::atomic<std::size_t> done{0};
+    parallel_for(0, pairs.size(), [&](std::size_t p) {
+      if (bounded[p]) {
+        if (progress) progress->update(++done, pairs.size());
+        return;
+      }
+      const ValidationBlock& a = blocks[pairs[p].first];
+      const ValidationBlock& b = blocks[pairs[p].second];
+      const double smaller = std::min(std::abs(volumes[pairs[p].first]), std::abs(volumes[pairs[p].second]));
+      double bound = std::numeric_limits<double>::infinity();
+      for (std::size_t f : pair_frames(p)) {
+        const auto& fa = framed.at({pairs[p].first, f});
+        const auto& fb = framed.at({pairs[p].second, f});
+        if (!fa || !fb) continue;
+        bound = std::min({bound, detail::box_separation_bound(*fa, *fb), detail::box_separation_bound(*fb, *fa)});
+        if (bound <= options.overlap_tolerance * smaller) break;
+      }
+      if (bound <= options.overlap_tolerance * smaller) {
+        vol[p] = bound;
+        bounded[p] = 2;
       } else {
         try {
           vol[p] = blocks_overlap(a.mesh, b.mesh);
@@ -265,6 +327,7 @@ ValidationReport validate_decomposition(const Mesh& input, const std::vector<Val
       const double ratio = vol[p] / smaller;
       if (bounded[p]) {
         ++num_bounded;
+        if (bounded[p] == 2) ++num_box_bounded;
         worst_bound = std::max(worst_bound, ratio);
         continue;
       }
@@ -274,15 +337,16 @@ ValidationReport validate_decomposition(const Mesh& input, const std::vector<Val
                                  " of the smaller)");
     }
     overlap.summary = std::to_string(pairs.size()) + " pairs with overlapping bounding boxes: " +
-                      std::to_string(num_bounded) + " bounded by their slabs (ratio <= " + fmt("%.3g", worst_bound) +
-                      "), " + std::to_string(pairs.size() - num_bounded) + " exact, worst ratio " + fmt("%.3g", worst);
+                      std::to_string(num_bounded) + " bounded (" + std::to_string(num_bounded - num_box_bounded) +
+                      " by a plane, " + std::to_string(num_box_bounded) + " by a bounding box; ratio <= " +
+                      fmt("%.3g", worst_bound) + "), " + std::to_string(pairs.size() - num_bounded) + " exact, worst ratio " + fmt("%.3g", worst);
   }
   report.checks.push_back(overlap);
 
   // 4. inside the input
   const bool tolerant = options.tolerance > 0;
-  std::vector<std::size_t> filled;  // blocks sticking out of the input (checked by check 8)
-  CheckReport inside = named_check(tolerant ? "inside the input, or sticking out within the tolerance (check 8)"
+  std::vector<std::size_t> filled;  // blocks sticking out of the input (checked by check 10)
+  CheckReport inside = named_check(tolerant ? "inside the input, or sticking out within the tolerance (check 10)"
                                             : "inside the input (volume outside <= 1e-6 of the block)");
   {
     StageScope stage(progress, "check: inside the input");
@@ -314,7 +378,7 @@ ValidationReport validate_decomposition(const Mesh& input, const std::vector<Val
                                 fmt("%.3g", ratio) + " of the block)");
     }
     inside.summary = "worst ratio outside " + fmt("%.3g", worst);
-    if (tolerant) inside.summary += " (" + std::to_string(filled.size()) + " block(s) sticking out: check 8)";
+    if (tolerant) inside.summary += " (" + std::to_string(filled.size()) + " block(s) sticking out: check 10)";
   }
   report.checks.push_back(inside);
 
@@ -419,7 +483,71 @@ ValidationReport validate_decomposition(const Mesh& input, const std::vector<Val
   }
   report.checks.push_back(machine);
 
-  // 8. within the tolerance
+  // 8. machine meshes in single precision
+  CheckReport single = named_check("machine meshes closed solids in single precision");
+  {
+    StageScope stage(progress, "check: single precision");
+    std::vector<std::optional<SinglePrecisionReport>> sp(n);
+    parallel_for(0, n, [&](std::size_t i) {
+      if (blocks[i].machine_mesh) sp[i] = check_single_precision(*blocks[i].machine_mesh);
+    });
+    std::size_t checked = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!sp[i]) continue;  // check 7 reports the missing machine mesh
+      ++checked;
+      const SinglePrecisionReport& r = *sp[i];
+      if (!r.ok())
+        add_failure(single, block_name(i) + " in float32: " + std::to_string(r.num_welded) + " vertices welded, " +
+                                std::to_string(r.solid.num_boundary_edges) + " boundary edges, " +
+                                std::to_string(r.solid.num_non_manifold_edges) + " non-manifold edges, " +
+                                std::to_string(r.solid.num_non_manifold_vertices) + " non-manifold vertices, " +
+                                std::to_string(r.solid.num_degenerate_faces) + " zero-area faces, " +
+                                std::to_string(r.num_self_intersections) + " self-intersecting face pairs");
+    }
+    single.summary = std::to_string(checked) + " machine meshes rounded to float32 and checked";
+  }
+  report.checks.push_back(single);
+
+  // 9. no slivers
+  CheckReport sliver = named_check("no slivers (thinner than max(1e-4 x diagonal, tolerance) where the model is not)");
+  {
+    StageScope stage(progress, "check: slivers");
+    report.sliver_thickness = std::max(options.sliver_thickness * diagonal, options.tolerance);
+    std::vector<SliverBlock> sb(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      sb[i].mesh = &blocks[i].mesh;
+      const Eigen::Matrix3d rot = blocks[i].machine_transform.topLeftCorner<3, 3>();
+      if ((rot.transpose() * rot - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() <= 1e-9) sb[i].frame = rot;
+    }
+    if (n > 0 && report.sliver_thickness > 0)
+      report.slivers = find_slivers(input, sb, {.min_thickness = report.sliver_thickness});
+    double thinnest = std::numeric_limits<double>::infinity();
+    std::size_t thinnest_block = 0, num_thin = 0;
+    for (std::size_t i = 0; i < report.slivers.size(); ++i) {
+      const SliverMeasure& m = report.slivers[i];
+      if (m.thickness.thickness < thinnest) {
+        thinnest = m.thickness.thickness;
+        thinnest_block = i;
+      }
+      if (m.measured) ++num_thin;
+      if (m.sliver)
+        add_failure(sliver, block_name(i) + ": " + fmt("%.3g", m.thickness.thickness / std::max(diagonal, 1e-300)) +
+                                " x diagonal thick where the model is " +
+                                (m.num_chords == 0 ? std::string("not measured (no line crossed the block)")
+                                                   : fmt("%.3g", m.model_chord / std::max(diagonal, 1e-300)) +
+                                                         " x diagonal"));
+    }
+    sliver.summary = "thinnest " +
+                     (report.slivers.empty() ? std::string("-")
+                                             : block_name(thinnest_block) + " " +
+                                                   fmt("%.3g", thinnest / std::max(diagonal, 1e-300)) + " x diagonal") +
+                     "; " + std::to_string(num_thin) + " below " +
+                     fmt("%.3g", report.sliver_thickness / std::max(diagonal, 1e-300)) + ", " +
+                     std::to_string(sliver.num_failures) + " where the model is thicker";
+  }
+  report.checks.push_back(sliver);
+
+  // 10. within the tolerance
   if (tolerant) {
     CheckReport within = named_check("within the tolerance (symmetric Hausdorff distance of input ∪ blocks to the input)");
     StageScope stage(progress, "check: tolerance");

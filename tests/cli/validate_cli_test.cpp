@@ -2,6 +2,7 @@
 // `subfab validate`'s milled-shape measures (informational), as a user sees them.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -101,6 +102,35 @@ TEST(ValidateCli, AnExactDecompositionSaysItsMilledShapesAreItsBlocks) {
   const auto j = json_of(run_subfab("validate " + quoted(mesh) + " " + quoted(dir) + " --json").output);
   EXPECT_EQ(j["milled_shapes"]["num_exact"], j["num_blocks"]);
   EXPECT_EQ(j["milled_shapes"]["max_deviation"], 0.0);
+}
+
+TEST(ValidateCli, ReportsEveryBlocksThicknessAndTheNewChecks) {
+  const fs::path dir = test::temp_dir();
+  const fs::path mesh = test::data_path("joint.off");
+  ASSERT_EQ(run_subfab("decompose " + quoted(mesh) + " -o " + quoted(dir) + " --quiet").exit_code, 0);
+  const auto doc = nlohmann::json::parse(slurp(dir / "decomposition.json"));
+  const auto j = json_of(run_subfab("validate " + quoted(mesh) + " " + quoted(dir) + " --json").output);
+  ASSERT_TRUE(j["passed"].get<bool>());
+  ASSERT_EQ(j["checks"].size(), 9u);  // 7 + single precision + slivers (10 with a tolerance)
+  EXPECT_EQ(j["checks"][7]["name"], "machine meshes closed solids in single precision");
+  EXPECT_EQ(j["checks"][8]["name"].get<std::string>().rfind("no slivers", 0), 0u);
+  const auto& t = j["thickness"];
+  ASSERT_EQ(t["blocks"].size(), doc["blocks"].size());
+  EXPECT_EQ(t["num_slivers"], 0);
+  double thinnest = 1e300;
+  for (std::size_t i = 0; i < doc["blocks"].size(); ++i) {
+    // decompose records the same thickness as validate measures (same mesh, same frame).
+    EXPECT_NEAR(t["blocks"][i]["thickness"].get<double>(), doc["blocks"][i]["thickness"].get<double>(),
+                1e-12 * doc["input"]["bbox_diagonal"].get<double>())
+        << i;
+    EXPECT_GT(doc["blocks"][i]["thickness"].get<double>(), 0.0) << i;
+    thinnest = std::min(thinnest, doc["blocks"][i]["thickness"].get<double>());
+  }
+  EXPECT_DOUBLE_EQ(doc["summary"]["min_thickness"].get<double>(), thinnest);
+  EXPECT_NEAR(t["min_thickness"].get<double>(), thinnest, 1e-12 * doc["input"]["bbox_diagonal"].get<double>());
+  const auto text = run_subfab("validate " + quoted(mesh) + " " + quoted(dir) + " --quiet");
+  EXPECT_NE(text.output.find("  thinnest block: block "), std::string::npos) << text.output;
+  EXPECT_NE(text.output.find("  9. PASS  no slivers"), std::string::npos) << text.output;
 }
 
 }  // namespace

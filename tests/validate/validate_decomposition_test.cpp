@@ -51,7 +51,7 @@ TEST(ValidateDecomposition, CorrectLDecompositionPasses) {
   const std::vector<ValidationBlock> blocks = {up_block(box_solid({0, 0, 0}, {2, 1, 1})),
                                                up_block(box_solid({0, 1, 0}, {1, 2, 1}))};
   const ValidationReport r = validate_decomposition(input, blocks, fast_options());
-  ASSERT_EQ(r.checks.size(), 7u);
+  ASSERT_EQ(r.checks.size(), 9u);
   for (const CheckReport& c : r.checks) EXPECT_TRUE(c.passed) << c.name << ": " << (c.failures.empty() ? "" : c.failures[0]);
   EXPECT_TRUE(r.passed());
 }
@@ -294,6 +294,73 @@ TEST(ValidateDecomposition, CoverageFindsTheUncoveredPart) {
   EXPECT_GE(r.num_samples, 20000u);
   const Mesh other = box_solid({1, 0, 0}, {2, 1, 1});
   EXPECT_TRUE(surface_coverage(input, {&half, &other}).ok());
+}
+
+}  // namespace
+}  // namespace subfab
+
+namespace subfab {
+namespace {
+
+TEST(ValidateDecomposition, SliverFailsCheckNine) {
+  // A unit cube cut at z = 0.99995: the top block is 5e-5 thick, below 1e-4
+  // of the diagonal (1.73e-4), where the model is 1 thick.
+  const Mesh cube = test::box_solid({0, 0, 0}, {1, 1, 1});
+  const std::vector<ValidationBlock> blocks = {
+      make_block(test::box_solid({0, 0, 0}, {1, 1, 0.99995}), Vec3::UnitZ(), Eigen::Matrix3d::Identity()),
+      make_block(test::box_solid({0, 0, 0.99995}, {1, 1, 1}), Vec3::UnitZ(), Eigen::Matrix3d::Identity())};
+  const ValidationReport r = validate_decomposition(cube, blocks, fast_options());
+  ASSERT_EQ(r.checks.size(), 9u);
+  for (int k = 1; k <= 8; ++k) EXPECT_TRUE(check(r, k).passed) << k;
+  EXPECT_FALSE(check(r, 9).passed);
+  EXPECT_EQ(check(r, 9).num_failures, 1u);
+  ASSERT_EQ(r.slivers.size(), 2u);
+  EXPECT_FALSE(r.slivers[0].sliver);
+  EXPECT_TRUE(r.slivers[1].sliver);
+  EXPECT_NEAR(r.slivers[1].thickness.thickness, 5e-5, 1e-9);
+  EXPECT_NEAR(r.sliver_thickness, 1e-4 * std::sqrt(3.0), 1e-15);
+  // Within a tolerance of 0.01 the threshold is the tolerance: still a sliver.
+  ValidationOptions o = fast_options();
+  o.tolerance = 0.01;
+  EXPECT_DOUBLE_EQ(validate_decomposition(cube, blocks, o).sliver_thickness, 0.01);
+}
+
+TEST(ValidateDecomposition, ThinModelThinBlocksPass) {
+  // A 1e-4-thick plate cut in two halves: both blocks are as thin as the model.
+  const Mesh plate = test::box_solid({0, 0, 0}, {2, 1, 1e-4});
+  const std::vector<ValidationBlock> blocks = {up_block(test::box_solid({0, 0, 0}, {1, 1, 1e-4})),
+                                               up_block(test::box_solid({1, 0, 0}, {2, 1, 1e-4}))};
+  const ValidationReport r = validate_decomposition(plate, blocks, fast_options());
+  EXPECT_TRUE(check(r, 9).passed) << (check(r, 9).failures.empty() ? "" : check(r, 9).failures[0]);
+  EXPECT_TRUE(r.slivers[0].measured);
+  EXPECT_FALSE(r.slivers[0].sliver);
+}
+
+TEST(ValidateDecomposition, MachineMeshCollapsingInFloat32FailsCheckEight) {
+  // A plate 4e-8 thick at z = 1 (machine frame = input frame shifted to z = 0
+  // would keep it representable, so the machine mesh is given as is).
+  const Mesh sheet = test::box_solid({0, 0, 1.0}, {4.3, 2.4, 1.0 + 4e-8});
+  ValidationBlock b = up_block(sheet);
+  b.machine_mesh = sheet;
+  b.machine_transform.setIdentity();
+  const ValidationReport r = validate_decomposition(sheet, {b}, fast_options());
+  EXPECT_FALSE(check(r, 8).passed);
+  ASSERT_EQ(check(r, 8).failures.size(), 1u);
+  EXPECT_NE(check(r, 8).failures[0].find("4 vertices welded"), std::string::npos) << check(r, 8).failures[0];
+}
+
+TEST(ValidateDecomposition, StaircaseContactNeedsNoBoolean) {
+  // The square [0,2]^2 x [0,1] as the L and the box in its corner: no plane
+  // separates them, the box bound settles the pair (exactly 0 up to 1e-15).
+  const Mesh square = test::box_solid({0, 0, 0}, {2, 2, 1});
+  const std::vector<ValidationBlock> blocks = {up_block(test::l_solid()),
+                                               up_block(test::box_solid({1, 1, 0}, {2, 2, 1}))};
+  const ValidationReport r = validate_decomposition(square, blocks, fast_options());
+  EXPECT_TRUE(r.passed());
+  EXPECT_NE(check(r, 3).summary.find("1 pairs with overlapping bounding boxes: 1 bounded (0 by a plane, 1 by a "
+                                     "bounding box"),
+            std::string::npos)
+      << check(r, 3).summary;
 }
 
 }  // namespace

@@ -29,8 +29,11 @@
 //!    "parameters": {"max_height_fraction", "max_height", "machine", "orient", "grid_factor"},
 //!    "blocks": [{"id", "mesh", "machine_mesh", "direction" (unit, input coordinates),
 //!                "axis" (canonical, "+z"), "base_offset" (min of v.direction), "height",
-//!                "volume", "bbox" {"min", "max"}, "machine_transform" 4x4 (input -> machine)}],
-//!    "summary": {"num_blocks", "material_volume_fraction", "min_block_volume_fraction"},
+//!                "volume", "thickness" (block_thickness(): smallest mean chord length along the
+//!                block's frame axes, model units), "bbox" {"min", "max"}, "machine_transform" 4x4
+//!                (input -> machine)}],
+//!    "summary": {"num_blocks", "material_volume_fraction", "min_block_volume_fraction",
+//!                "min_thickness" (model units), "min_thickness_fraction" (x bbox diagonal)},
 //!    "timings_s": {"orient", "field", "grow", "cover", "resolve", "carve", "total"}}
 //! Unlimited parameters are written as null. Everything but "timings_s" is
 //! byte-identical for identical input and options, whatever the thread count.
@@ -64,6 +67,7 @@ struct ExportedBlock {
   double base_offset = 0;   // min of v.direction over the block (model units)
   double height = 0;        // max - min of v.direction (model units)
   double volume = 0;        // model units^3
+  double thickness = 0;     // block_thickness() in its machine frame (model units)
   double max_overhang_deg = 0;  // steepest face off the base leaning past vertical (degrees; 0 when none;
                                 // hundredths of a degree from rounding on exact blocks; <= --max-overhang)
   BoundingBox bbox;         // input coordinates

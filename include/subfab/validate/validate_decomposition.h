@@ -12,7 +12,12 @@
 //!      1e-5 x bbox diagonal of some block's boundary;
 //!   6. height and machine-size limits hold;
 //!   7. each machine mesh is its block moved rigidly (direction to +Z, base on z = 0);
-//!   8. (decompositions within a tolerance T only) the model made, the input
+//!   8. each machine mesh, in single precision (as binary STL stores it), is
+//!      still a closed solid without zero-area faces or self-intersections
+//!      (check_single_precision.h);
+//!   9. no slivers: no block thinner than max(1e-4 x diagonal, T) where the
+//!      model is thicker (find_slivers.h; T = the tolerance, 0 when exact);
+//!  10. (decompositions within a tolerance T only) the model made, the input
 //!      with the blocks that stick out of it, lies within T of the input:
 //!      symmetric Hausdorff distance between the surfaces <= T (checks 4 and
 //!      5 then accept blocks sticking out and samples within T).
@@ -27,6 +32,7 @@
 
 #include "subfab/core/progress.h"
 #include "subfab/mesh/mesh.h"
+#include "subfab/validate/find_slivers.h"
 #include "subfab/validate/milled_shape.h"
 
 namespace subfab {
@@ -162,19 +168,21 @@ struct ValidationOptions {
   std::size_t num_coverage_samples = 20000;  // check 5
   double coverage_tolerance = 1e-5;   // check 5: distance / bbox diagonal
   double limit_tolerance = 1e-6;      // check 6 and 7: slack / bbox diagonal
+  double sliver_thickness = 1e-4;     // check 9: blocks thinner than max(this x diagonal, tolerance)
+                                      // where the model is thicker are slivers (fraction of the diagonal)
   ValidationLimits limits;            // check 6
   double tolerance = 0.0;             // deviation allowed (model units; the decomposition's --tolerance):
                                       // when > 0, blocks may stick out of the input (check 4 lists them),
-                                      // check 5 accepts samples within it, and check 8 measures the model
+                                      // check 5 accepts samples within it, and check 10 measures the model
                                       // made (input ∪ blocks) against the input: symmetric Hausdorff
                                       // distance between the surfaces (FillDeviationMeter) <= it
-  double tolerance_error = 0.02;      // check 8: error bound of the distances, fraction of the tolerance
+  double tolerance_error = 0.02;      // check 10: error bound of the distances, fraction of the tolerance
   bool measure_milled_shapes = true;  // informational: each block's milled shape (milled_shape.h)
   double milled_hausdorff_error = 1e-5;  // error bound of its distances (fraction of the diagonal)
   Progress* progress = nullptr;       // progress per check (nullptr: silent)
 };
 
-//! Outcome of one of the seven checks.
+//! Outcome of one of the checks.
 struct CheckReport {
   std::string name;                   // "closed solid", "height field", ...
   bool passed = true;
@@ -185,9 +193,11 @@ struct CheckReport {
 
 //! Outcome of validate_decomposition().
 struct ValidationReport {
-  std::vector<CheckReport> checks;  // the seven checks, in order
+  std::vector<CheckReport> checks;  // the checks, in order (9; 10 with a tolerance)
   MilledShapesReport milled;        // informational, not a check (empty when not measured)
-  // check 8 (tolerance > 0): the deviation of the model made, model units
+  std::vector<SliverMeasure> slivers;  // check 9: every block's thickness (and the model's, for thin ones)
+  double sliver_thickness = 0.0;    // check 9's threshold (model units)
+  // check 10 (tolerance > 0): the deviation of the model made, model units
   std::size_t num_filled = 0;       // blocks that stick out of the input
   double deviation_to_input = 0.0;  // how far the blocks stick out (max over the filled blocks)
   double deviation_from_input = 0.0;  // how deep the input surface lies under them
@@ -199,7 +209,7 @@ struct ValidationReport {
   }
 };
 
-//! Runs the seven checks on a decomposition of `input` (thesis Section 4.2).
+//! Runs the checks on a decomposition of `input` (thesis Section 4.2).
 //! Pairwise overlaps use exact booleans only for pairs whose bounding boxes
 //! overlap and whose overlap_volume_bound() (input frame, or either block's
 //! machine frame) exceeds the tolerance. Then, unless turned off, measures

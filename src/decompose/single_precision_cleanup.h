@@ -1,0 +1,37 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file single_precision_cleanup.h
+//! Private (export): makes a block's machine mesh stay a solid once written
+//! in single precision (binary STL, float32), issue 17. Rounding to float32
+//! can collapse a sheet thinner than float32's spacing (its vertices weld,
+//! faces lose their area) or push a vertex through a face nearby (the mesh
+//! then intersects itself). Decompositions without slivers rarely need it.
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+#include "subfab/mesh/mesh.h"
+
+namespace subfab::detail {
+
+//! What clean_single_precision() did.
+struct SinglePrecisionCleanup {
+  std::size_t num_collapsed = 0;  // vertices merged into another that rounds to the same float point
+  std::size_t num_faces_removed = 0;  // faces that lost their area, or coincident pairs of opposite faces
+  std::size_t num_nudged = 0;     // vertices rounded the other way (toward the neighbouring float)
+  bool ok = true;                 // the float32 mesh is a closed solid without self-intersections
+};
+
+//! Checks `machine` (machine coordinates) in float32 (check_single_precision())
+//! and, when it fails, repairs it: vertices that round to the same float
+//! point are merged (in `machine` and in `block`, its input-frame twin with
+//! the same vertex ids, which takes the position of the merged vertex's
+//! representative), faces without area and coincident opposite face pairs
+//! are removed from both; vertices of faces that still intersect in float32
+//! are rounded the other way, coordinate by coordinate (up to 8 candidates
+//! per vertex, kept when they reduce the number of intersecting pairs). The
+//! machine mesh's coordinates are left as floats. `ok` says whether the
+//! float32 mesh is a solid at the end (it is checked again).
+SinglePrecisionCleanup clean_single_precision(Mesh& machine, Mesh& block);
+
+}  // namespace subfab::detail

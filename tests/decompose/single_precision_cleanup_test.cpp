@@ -1,0 +1,65 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Regression: kitten --max-height 0.05, block 040's machine STL
+// self-intersected once rounded to float32 (issue 17); export now cleans it.
+#include "decompose/single_precision_cleanup.h"
+
+#include <gtest/gtest.h>
+
+#include "subfab/validate/check_single_precision.h"
+#include "support/block_test_shapes.h"
+
+namespace subfab {
+namespace {
+
+//! A frustum 1e-7 tall over z = 1 whose top corner 7 rounds down onto the
+//! base plane in float32 (the others round up): the minimal mesh of the bug.
+Mesh frustum() {
+  Mesh m;
+  m.vertices = {{0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1},
+                {0.25, 0.25, 1 + 1e-7}, {0.75, 0.25, 1 + 1e-7}, {0.75, 0.75, 1 + 1e-7}, {0.25, 0.75, 1 + 2e-8}};
+  m.faces = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}};
+  for (int i = 0; i < 4; ++i) {
+    const int j = (i + 1) % 4;
+    m.faces.push_back({i, j, 4 + j});
+    m.faces.push_back({i, 4 + j, 4 + i});
+  }
+  return m;
+}
+
+TEST(SinglePrecisionCleanup, VertexRoundedThroughAFaceIsRoundedTheOtherWay) {
+  Mesh machine = frustum(), block = frustum();
+  ASSERT_FALSE(check_single_precision(machine).ok());
+  const detail::SinglePrecisionCleanup r = detail::clean_single_precision(machine, block);
+  EXPECT_TRUE(r.ok);
+  EXPECT_EQ(r.num_collapsed, 0u);
+  EXPECT_GE(r.num_nudged, 1u);
+  EXPECT_TRUE(check_single_precision(machine).ok());
+  // Every machine coordinate is a float within one float spacing of the original.
+  const Mesh original = frustum();
+  for (std::size_t v = 0; v < machine.num_vertices(); ++v)
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_EQ(machine.vertices[v][k], static_cast<double>(static_cast<float>(machine.vertices[v][k])));
+      EXPECT_LE(std::abs(machine.vertices[v][k] - original.vertices[v][k]), 1.2e-7);
+    }
+  EXPECT_EQ(block.faces, machine.faces);  // the block keeps the machine mesh's faces
+}
+
+TEST(SinglePrecisionCleanup, SolidMeshIsLeftAlone) {
+  Mesh machine = test::box_solid({0, 0, 0}, {1, 2, 3}), block = machine;
+  const detail::SinglePrecisionCleanup r = detail::clean_single_precision(machine, block);
+  EXPECT_TRUE(r.ok);
+  EXPECT_EQ(r.num_collapsed + r.num_nudged + r.num_faces_removed, 0u);
+  EXPECT_EQ(machine.vertices, test::box_solid({0, 0, 0}, {1, 2, 3}).vertices);
+}
+
+TEST(SinglePrecisionCleanup, SheetThinnerThanAFloatIsReported) {
+  // Issue 17's 4.3 x 2.4 x 1.3e-7 sheet, at z = 1 (thinner than float32's
+  // spacing there): it collapses entirely, which no rounding can save.
+  Mesh machine = test::box_solid({0, 0, 1}, {4.3, 2.4, 1 + 4e-8}), block = machine;
+  const detail::SinglePrecisionCleanup r = detail::clean_single_precision(machine, block);
+  EXPECT_FALSE(r.ok);
+  EXPECT_EQ(r.num_collapsed, 4u);
+}
+
+}  // namespace
+}  // namespace subfab
