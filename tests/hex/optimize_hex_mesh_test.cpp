@@ -8,26 +8,14 @@
 #include "subfab/core/error.h"
 
 #include "subfab/hex/scaled_jacobian.h"
+#include "support/hex_test_shapes.h"
 #include "support/test_shapes.h"
 
 namespace subfab {
 namespace {
 
-//! A 3 x 3 x 3 grid of unit hexahedra filling [0,3]^3; vertex (i,j,k) has
-//! index i + 4j + 16k.
-HexMesh grid3() {
-  HexMesh m;
-  for (int k = 0; k < 4; ++k)
-    for (int j = 0; j < 4; ++j)
-      for (int i = 0; i < 4; ++i) m.vertices.push_back(Vec3(i, j, k));
-  auto id = [](int i, int j, int k) { return i + 4 * j + 16 * k; };
-  for (int k = 0; k < 3; ++k)
-    for (int j = 0; j < 3; ++j)
-      for (int i = 0; i < 3; ++i)
-        m.hexes.push_back({id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k), id(i, j + 1, k), id(i, j, k + 1),
-                           id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)});
-  return m;
-}
+//! [0,3]^3 as 3 x 3 x 3 unit hexahedra; vertex (i,j,k) has index i + 4j + 16k.
+HexMesh grid3() { return test::hex_grid(3, 3, 3); }
 
 // Regression (issue 14): boundary vertices were put on their targets in one
 // go after each split, which inverted the thin padding layer. A target deep
