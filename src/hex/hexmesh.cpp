@@ -4,8 +4,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 
 #include "geometry/hausdorff_distance.h"
 #include "hex/hex_topology.h"
@@ -156,12 +154,6 @@ HexMeshResult hexmesh(const Mesh& surface, const Skeleton* skeleton, const HexMe
   const bool smooth = oo.smooth;
   oo.smooth = smooth && r.subdivisions == 0;  // smoothing a coarse level drags the core to the surface
   r.optimize = optimize_hex_mesh(mesh, surface, oo);
-  if (std::getenv("HEXDBG")) {
-    const auto sj = scaled_jacobians(mesh);
-    for (std::size_t h = 0; h < sj.size(); ++h)
-      if (sj[h] <= 0) std::fprintf(stderr, "  coarse inverted %zu (%s) %.3f\n", h, h < r.structure.hexes.size() ? "core" : "pillow", sj[h]);
-  }
-  if (std::getenv("HEXDBG")) std::fprintf(stderr, "coarse: %zu hexes before %.3f after %.3f inv %zu off %zu passes %d\n", mesh.hexes.size(), r.optimize.min_before, r.optimize.min_after, r.optimize.num_inverted, r.optimize.num_off_surface, r.optimize.passes);
   for (int i = 0; i < r.subdivisions; ++i) {
     oo.smooth = smooth && i + 1 == r.subdivisions;
     std::vector<Vec3> targets;
@@ -173,7 +165,6 @@ HexMeshResult hexmesh(const Mesh& surface, const Skeleton* skeleton, const HexMe
     oo.targets = &targets;
     const double first_min = r.optimize.min_before;
     r.optimize = optimize_hex_mesh(mesh, surface, oo);
-    if (std::getenv("HEXDBG")) std::fprintf(stderr, "level %d: %zu hexes before %.3f after %.3f inv %zu off %zu passes %d\n", i, mesh.hexes.size(), r.optimize.min_before, r.optimize.min_after, r.optimize.num_inverted, r.optimize.num_off_surface, r.optimize.passes);
     r.optimize.min_before = std::min(first_min, r.optimize.min_before);
     oo.targets = nullptr;
   }

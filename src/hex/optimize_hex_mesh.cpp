@@ -20,6 +20,7 @@ constexpr double kInvertedMargin = 0.02;  // the last-resort passes lift element
 constexpr double kProgress = 1e-3;        // improvement of the worst element that counts as progress
 constexpr int kPatience = 10;             // passes without progress before giving up
 constexpr double kArrived = 1e-12;        // squared distance at which a vertex is at its target
+constexpr double kReach = 1.0;            // untangling moves a vertex at most this many mean edges
 
 struct Optimizer {
   HexMesh& mesh;
@@ -307,7 +308,7 @@ OptimizeHexMeshReport optimize_hex_mesh(HexMesh& mesh, const Mesh& surface, cons
   opt.on_surface.assign(mesh.vertices.size(), 0);
   opt.origin = mesh.vertices;
   opt.reach.resize(mesh.vertices.size());
-  for (std::size_t v = 0; v < mesh.vertices.size(); ++v) opt.reach[v] = opt.edge_scale(v);
+  for (std::size_t v = 0; v < mesh.vertices.size(); ++v) opt.reach[v] = kReach * opt.edge_scale(v);
   {
     StageScope stage(options.progress, "project");
     if (options.targets && options.targets->size() != mesh.vertices.size())

@@ -3,21 +3,13 @@
 
 #include <gtest/gtest.h>
 
+#include "support/hex_test_shapes.h"
+
 namespace subfab {
 namespace {
 
 //! Two unit cubes side by side along x, sharing a face.
-HexMesh two_cubes() {
-  HexMesh m;
-  for (int k = 0; k < 2; ++k)
-    for (int j = 0; j < 2; ++j)
-      for (int i = 0; i < 3; ++i) m.vertices.push_back(Vec3(i, j, k));
-  auto v = [](int i, int j, int k) { return (k * 2 + j) * 3 + i; };
-  for (int i = 0; i < 2; ++i)
-    m.hexes.push_back({v(i, 0, 0), v(i + 1, 0, 0), v(i + 1, 1, 0), v(i, 1, 0), v(i, 0, 1), v(i + 1, 0, 1),
-                       v(i + 1, 1, 1), v(i, 1, 1)});
-  return m;
-}
+HexMesh two_cubes() { return test::hex_grid(2, 1, 1); }
 
 TEST(HexMesh, TwoCubesShareOneQuad) {
   const HexMeshCheck c = check_hex_mesh(two_cubes());

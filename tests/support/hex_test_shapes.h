@@ -83,6 +83,22 @@ inline Skeleton ring_skeleton(int n = 16, double big = 2.0, double r = 0.5) {
   return s;
 }
 
+//! A grid of nx x ny x nz unit hexahedra filling [0,nx] x [0,ny] x [0,nz]
+//! (VTK order); vertex (i,j,k) has index i + (nx+1) (j + (ny+1) k).
+inline HexMesh hex_grid(int nx, int ny, int nz) {
+  HexMesh m;
+  for (int k = 0; k <= nz; ++k)
+    for (int j = 0; j <= ny; ++j)
+      for (int i = 0; i <= nx; ++i) m.vertices.push_back(Vec3(i, j, k));
+  auto id = [&](int i, int j, int k) { return i + (nx + 1) * (j + (ny + 1) * k); };
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i)
+        m.hexes.push_back({id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k), id(i, j + 1, k), id(i, j, k + 1),
+                           id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)});
+  return m;
+}
+
 //! The unit cube [0,1]^3 as one hexahedron (VTK order).
 inline HexMesh unit_hex_cube() {
   HexMesh m;

@@ -12,8 +12,10 @@
 //!      stays thick;
 //!   5. coarse to fine: optimize_hex_mesh() (D.6: boundary on the surface,
 //!      untangling), then `subdivisions` times: subdivide_hex_mesh() (regular
-//!      2 x 2 x 2 split), new boundary vertices onto the surface along their
-//!      padding edge, optimize_hex_mesh() again (smoothing on the last level);
+//!      2 x 2 x 2 split), a target on the surface for each boundary vertex
+//!      along its padding edge, optimize_hex_mesh() again, which moves the
+//!      boundary there in steps that keep the elements valid (smoothing on
+//!      the last level);
 //!   6. measures: conformity, scaled Jacobians, distance to the input.
 //! Not done yet: resolution control (D.5, cones and the integer programme).
 #pragma once

@@ -4,22 +4,26 @@
 //! boundary vertices are kept on the input surface while the vertices are
 //! relaxed and the elements untangled, maximising the minimum scaled
 //! Jacobian. The thesis used the edge-cone rectification of Livesu et al.
-//! 2015 (no public code); this is a simpler, deterministic scheme:
-//!   1. relaxation: `relax_iterations` Jacobi passes; an interior vertex moves
-//!      to the mean of its edge neighbours, a boundary vertex to the mean of
-//!      its boundary neighbours, then back onto the surface (closest point);
-//!   2. smart smoothing: Gauss-Seidel passes in vertex order, each vertex
-//!      moving to that mean only if the worst scaled Jacobian of its
-//!      hexahedra does not drop;
+//! 2015 (no public code); this is a simpler, deterministic scheme, in passes:
+//!   1. guarded projection: each boundary vertex not yet on the surface moves
+//!      to its target (`targets`, else its closest point) the whole way, half
+//!      or a quarter of it, whichever first keeps the worst scaled Jacobian of
+//!      its hexahedra >= min(projection_floor, its value before);
+//!   2. smart smoothing: Gauss-Seidel in vertex order, each vertex moving to
+//!      the mean of its neighbours (boundary ones along the boundary, back
+//!      onto the surface) only if the worst scaled Jacobian of its hexahedra
+//!      does not drop;
 //!   3. untangling: every vertex of a hexahedron whose scaled Jacobian is
 //!      under target_quality takes a few gradient steps (central differences,
 //!      backtracking) on a soft-min energy of the corners of its hexahedra,
-//!      sum exp(-10 x corner scaled Jacobian); a boundary vertex moves in the
-//!      surface's tangent plane and is put back on the surface.
-//! Steps 2 and 3 alternate until every element reaches target_quality, or
-//! the worst one stalls for 10 passes, or `passes` passes. Then, for
-//! elements still under 0.02, a last resort lets their boundary vertices
-//! leave the surface (validity first; the distance measure shows the cost).
+//!      sum exp(-10 x corner scaled Jacobian); a boundary vertex on the
+//!      surface moves in its tangent plane and is put back on the surface; no
+//!      vertex goes farther than its initial mean edge from where it began.
+//! The passes stop when every element reaches target_quality and every
+//! boundary vertex is on the surface, when neither improves for 10 passes,
+//! or after `passes`. Then, for elements still under 0.02, a last resort lets
+//! their boundary vertices leave the surface (by at most a quarter edge) and
+//! raises the worst element by a pattern search; kept only if it helped.
 //! Serial Gauss-Seidel sweeps in vertex order: deterministic.
 #pragma once
 
@@ -33,7 +37,7 @@
 namespace subfab {
 
 struct OptimizeHexMeshOptions {
-  int relax_iterations = 0;     // plain Laplacian passes (step 1; they can fold curved tubes, off by default)
+  int relax_iterations = 0;     // plain Laplacian passes before the others (they can fold curved tubes, off by default)
   int passes = 100;             // at most this many smart smoothing + untangling passes (steps 2 and 3)
   double target_quality = 0.5;  // hexahedra under this scaled Jacobian get their vertices optimised
   bool smooth = true;           // run the smart smoothing of step 2 (else untangling only)
