@@ -184,9 +184,10 @@ SmoothedDecomposeResult decompose_smoothed(const Mesh& input_mesh, const Smoothe
                                                  : Vec3::Constant(std::numeric_limits<double>::infinity());
   const double diagonal = bounding_box(original_c).diagonal();
   // Room for the details: the boxes grown by the smoothing's largest move.
-  const std::vector<HeightBox> room =
+  std::vector<HeightBox> room =
       room_boxes(result.ordered_boxes, report.smooth.max_displacement * (1 + 1e-6), result.max_height, machine);
   std::vector<int> held;
+  bool room_taken_back = false;
   RestoreDetailsResult restored;
   std::vector<Block> blocks;
   for (int round = 0;; ++round) {
@@ -228,6 +229,12 @@ SmoothedDecomposeResult decompose_smoothed(const Mesh& input_mesh, const Smoothe
       progress->info(std::to_string(failed.size()) + " block(s) of the restored solid failed the checks and " +
                      std::to_string(uncovered.size()) + " restored face(s) are not on the blocks; holding " +
                      std::to_string(held.size() - before) + " more vertices at their smoothed positions");
+    if (held.size() == before && !room_taken_back) {  // the grown boxes may be what fails: carve with the boxes
+      room = result.ordered_boxes;
+      room_taken_back = true;
+      if (progress) progress->info("carving with the boxes as the smoothed model's decomposition left them");
+      continue;
+    }
     if (held.size() == before)
       throw AlgorithmError("restoring the details: " + std::to_string(failed.size()) + " block(s) fail and " +
                            std::to_string(uncovered.size()) +

@@ -20,19 +20,7 @@
 namespace subfab {
 namespace {
 
-//! The unit grid cube with a Gaussian bump of height `height` on its top
-//! face; `lean` > 0 pushes the bump's top along +x (an undercut along +z).
-Mesh bumped_cube(int n, double height, double lean = 0.0) {
-  Mesh m = test::grid_cube(n);
-  for (Vec3& p : m.vertices) {
-    if (p.z() != 1.0 || p.x() <= 0 || p.x() >= 1 || p.y() <= 0 || p.y() >= 1) continue;
-    const double r2 = (p.x() - 0.5) * (p.x() - 0.5) + (p.y() - 0.5) * (p.y() - 0.5);
-    const double g = std::exp(-r2 / 0.02);
-    p.z() += height * g;
-    p.x() += lean * g * g;
-  }
-  return m;
-}
+using test::bumped_cube;
 
 SmoothedDecomposeOptions options_for_test(double cap, int passes) {
   SmoothedDecomposeOptions o;

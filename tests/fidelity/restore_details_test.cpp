@@ -16,21 +16,7 @@
 namespace subfab {
 namespace {
 
-//! The unit grid cube with a Gaussian bump of height `height` on its top
-//! face around (0.5, 0.5); with `lean` > 0 the bump's top is also pushed
-//! along +x by lean x (its profile), which folds it over: faces on its +x
-//! side face down (an undercut along +z).
-Mesh bumped_cube(int n, double height, double lean = 0.0) {
-  Mesh m = test::grid_cube(n);
-  for (Vec3& p : m.vertices) {
-    if (p.z() != 1.0 || p.x() <= 0 || p.x() >= 1 || p.y() <= 0 || p.y() >= 1) continue;
-    const double r2 = (p.x() - 0.5) * (p.x() - 0.5) + (p.y() - 0.5) * (p.y() - 0.5);
-    const double g = std::exp(-r2 / 0.02);
-    p.z() += height * g;
-    p.x() += lean * g * g;
-  }
-  return m;
-}
+using test::bumped_cube;
 
 //! Faces of the top (every corner above z = 0.9) whose exact normal has a
 //! negative z component.

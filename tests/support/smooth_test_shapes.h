@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //! Small shapes with known answers for the smoothing tests (taubin_smooth,
-//! smooth_for_decomposition): a finely gridded cube, an icosphere, radial
-//! noise, an inverted copy (a cavity).
+//! smooth_for_decomposition, restore_details, decompose_smoothed): a finely
+//! gridded cube (with a bump), an icosphere, radial noise, an inverted copy
+//! (a cavity).
 #pragma once
 
 #include <algorithm>
@@ -47,6 +48,22 @@ inline Mesh grid_cube(int n, double size = 1.0, const Vec3& lo = Vec3::Zero()) {
     }
   weld_identical_vertices(mesh);
   return mesh;
+}
+
+//! grid_cube(n) with a Gaussian bump of height `height` on its top face
+//! around (0.5, 0.5); with `lean` > 0 the bump's top is also pushed along +x
+//! by lean x (its profile)^2, which folds it over: faces on its +x side face
+//! down (an undercut along +z).
+inline Mesh bumped_cube(int n, double height, double lean = 0.0) {
+  Mesh m = grid_cube(n);
+  for (Vec3& p : m.vertices) {
+    if (p.z() != 1.0 || p.x() <= 0 || p.x() >= 1 || p.y() <= 0 || p.y() >= 1) continue;
+    const double r2 = (p.x() - 0.5) * (p.x() - 0.5) + (p.y() - 0.5) * (p.y() - 0.5);
+    const double g = std::exp(-r2 / 0.02);
+    p.z() += height * g;
+    p.x() += lean * g * g;
+  }
+  return m;
 }
 
 //! Unit icosphere around `centre` (radius `radius`): an icosahedron split

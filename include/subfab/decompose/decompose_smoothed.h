@@ -18,7 +18,8 @@
 //!      rounded blocks fully) and the surface of the restored solid checked
 //!      to lie on the blocks; where a block fails or a face is not covered, the
 //!      vertices there are held at their smoothed positions and 3.-4. run
-//!      again (at most max_carve_rounds times)
+//!      again (at most max_carve_rounds times; when no vertex is left to hold,
+//!      once more with the boxes not grown)
 //!   5. merge_blocks()                             the 4.3.4 post-processing
 //!   6. the deviation of the blocks' union (the restored solid, carved exactly)
 //!      from the ORIGINAL input: symmetric Hausdorff distance (CGAL, bounded

@@ -4,7 +4,8 @@
 //! small, measured deviation from the input for fewer height-field blocks by
 //! low-pass filtering the model before the decomposition (Taubin 1995), with
 //! the guarantee that the result is still a valid solid. The thesis's second
-//! step (reintroducing the details into the blocks) is not implemented.
+//! step (reintroducing the details into the blocks) is restore_details(), run
+//! by decompose_smoothed().
 //!
 //! Outline of smooth_for_decomposition():
 //!   1. the input must be a closed, manifold, outward-oriented,
