@@ -146,6 +146,23 @@ TEST(RepairMesh, TeapotPatchesBecomeASolid) {
   ASSERT_NE(applied(r, "self_intersections"), nullptr);
 }
 
+TEST(RepairMesh, CowFoldsAreCutOutAndTheMuzzleOverlapAutorefined) {
+  // data/cow.obj: a pinched vertex, small folds at the horns and the muzzle
+  // tip, and the muzzle pushed into the head (83 crossing pairs). Cutting out
+  // every crossing with 3 rings dropped the muzzle tip (deviation 0.091 of the
+  // diagonal, over the 0.05 cap); cutting out the folds only, then keeping the
+  // outer hull of the overlap, moves the surface by 0.017.
+  const Mesh input = read_mesh(test::data_path("cow.obj"));
+  const MeshRepairResult r = repair_mesh(input);
+  EXPECT_TRUE(analyze_mesh(r.mesh).all_passed());
+  ASSERT_NE(applied(r, "self_intersections"), nullptr);
+  EXPECT_NE(applied(r, "self_intersections")->message.find("folds"), std::string::npos)
+      << applied(r, "self_intersections")->message;
+  EXPECT_LT(r.report.max_deviation_fraction(), 0.025);
+  // The muzzle tip (the input's smallest x) is kept.
+  EXPECT_NEAR(bounding_box(r.mesh).min.x(), bounding_box(input).min.x(), 0.02 * r.report.bbox_diagonal);
+}
+
 TEST(RepairMesh, RejectsBadOptions) {
   MeshRepairOptions options;
   options.max_deviation = 0;

@@ -34,7 +34,11 @@
 //!      autorefined and the patches inside another part dropped, keeping the
 //!      outer hull (PMP::experimental::autorefine_and_remove_self_intersections,
 //!      exact predicates and a consistent-orientation rule, no ray casting);
-//!      where that fails, local remeshing (PMP::experimental::remove_self_intersections);
+//!      where the rule is refused and folds (crossing faces within a few
+//!      rings of each other) mix with overlapping parts, the folds cut out and
+//!      closed by faired patches, then the overlap autorefined; else the
+//!      crossings cut out with 2-4 rings and closed by faired patches; where
+//!      that fails, local remeshing (PMP::experimental::remove_self_intersections);
 //!  12. orient_outward: every shell oriented to bound a volume
 //!      (PMP::orient_to_bound_a_volume: cavities inward, outer shells outward).
 //! Then the same exact input checks as `subfab info` (analyze_mesh) and the
