@@ -11,23 +11,10 @@
 namespace subfab {
 namespace {
 
-//! A frustum 1e-7 tall over z = 1 whose top corner 7 rounds down onto the
-//! base plane in float32 (the others round up): the minimal mesh of the bug.
-Mesh frustum() {
-  Mesh m;
-  m.vertices = {{0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1},
-                {0.25, 0.25, 1 + 1e-7}, {0.75, 0.25, 1 + 1e-7}, {0.75, 0.75, 1 + 1e-7}, {0.25, 0.75, 1 + 2e-8}};
-  m.faces = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}};
-  for (int i = 0; i < 4; ++i) {
-    const int j = (i + 1) % 4;
-    m.faces.push_back({i, j, 4 + j});
-    m.faces.push_back({i, 4 + j, 4 + i});
-  }
-  return m;
-}
+using test::float32_frustum;
 
 TEST(SinglePrecisionCleanup, VertexRoundedThroughAFaceIsRoundedTheOtherWay) {
-  Mesh machine = frustum(), block = frustum();
+  Mesh machine = float32_frustum(), block = float32_frustum();
   ASSERT_FALSE(check_single_precision(machine).ok());
   const detail::SinglePrecisionCleanup r = detail::clean_single_precision(machine, block);
   EXPECT_TRUE(r.ok);
@@ -35,7 +22,7 @@ TEST(SinglePrecisionCleanup, VertexRoundedThroughAFaceIsRoundedTheOtherWay) {
   EXPECT_GE(r.num_nudged, 1u);
   EXPECT_TRUE(check_single_precision(machine).ok());
   // Every machine coordinate is a float within one float spacing of the original.
-  const Mesh original = frustum();
+  const Mesh original = float32_frustum();
   for (std::size_t v = 0; v < machine.num_vertices(); ++v)
     for (int k = 0; k < 3; ++k) {
       EXPECT_EQ(machine.vertices[v][k], static_cast<double>(static_cast<float>(machine.vertices[v][k])));

@@ -102,4 +102,21 @@ inline std::vector<ValidationBlock> to_validation(std::vector<ExportedBlock> blo
   return out;
 }
 
+//! Issue 17's float32 regression (kitten --max-height 0.05, block 040),
+//! minimal mesh: a frustum 1e-7 tall over z = 1 whose top corners round up
+//! in float32 (to 1 + 1.19e-7) but corner 7 rounds down onto the base plane,
+//! touching the base face: no vertex welds, the faces intersect.
+inline Mesh float32_frustum() {
+  Mesh m;
+  m.vertices = {{0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1},
+                {0.25, 0.25, 1 + 1e-7}, {0.75, 0.25, 1 + 1e-7}, {0.75, 0.75, 1 + 1e-7}, {0.25, 0.75, 1 + 2e-8}};
+  m.faces = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}};
+  for (int i = 0; i < 4; ++i) {
+    const int j = (i + 1) % 4;
+    m.faces.push_back({i, j, 4 + j});
+    m.faces.push_back({i, 4 + j, 4 + i});
+  }
+  return m;
+}
+
 }  // namespace subfab::test

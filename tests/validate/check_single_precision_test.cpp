@@ -26,18 +26,8 @@ TEST(CheckSinglePrecision, SheetCollapses) {
 
 TEST(CheckSinglePrecision, FrustumTopVertexRoundedOntoItsBase) {
   // Regression (kitten --max-height 0.05, block 040 self-intersected after
-  // float32 rounding), minimal mesh: a frustum 1e-7 tall over z = 1 whose
-  // top corners round up (1 + 1.19e-7) but one rounds down onto the base
-  // plane, touching the base face: no vertex welds, the faces intersect.
-  Mesh m;
-  m.vertices = {{0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1},
-                {0.25, 0.25, 1 + 1e-7}, {0.75, 0.25, 1 + 1e-7}, {0.75, 0.75, 1 + 1e-7}, {0.25, 0.75, 1 + 2e-8}};
-  m.faces = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}};
-  for (int i = 0; i < 4; ++i) {
-    const int j = (i + 1) % 4;
-    m.faces.push_back({i, j, 4 + j});
-    m.faces.push_back({i, 4 + j, 4 + i});
-  }
+  // float32 rounding): see test::float32_frustum().
+  const Mesh m = test::float32_frustum();
   ASSERT_TRUE(check_closed_solid(m).ok());
   const SinglePrecisionReport r = check_single_precision(m);
   EXPECT_EQ(r.num_welded, 0u);
