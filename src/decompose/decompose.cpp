@@ -14,6 +14,7 @@
 
 #include "geometry/rotate_accurately.h"
 #include "subfab/checks/require_closed_solid.h"
+#include "decompose/block_pairs_detail.h"
 #include "decompose/box_pieces.h"
 #include "geometry/solid_index.h"
 #include "subfab/core/error.h"
@@ -266,8 +267,7 @@ std::size_t lower_allowances(const Mesh& solid, const MillToleranceResult& mille
     const int k = axis_dimension(milled.blocks[i].axis);
     const auto bit = static_cast<std::uint8_t>(1u << k);
     for (std::size_t f = 0; f < solid.num_faces(); ++f) {
-      const BoundingBox& fb = face_boxes[f];
-      if ((allowed[f] & bit) && (fb.min.array() <= box.max.array()).all() && (box.min.array() <= fb.max.array()).all())
+      if ((allowed[f] & bit) && detail::boxes_touch(face_boxes[f], box))
         lower[f][static_cast<std::size_t>(k)] = 1;
     }
   }

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "decompose/block_pairs_detail.h"
 #include "geometry/hausdorff_distance.h"
 #include "geometry/rotate_accurately.h"
 #include "geometry/surface_deviation.h"
@@ -36,12 +37,6 @@ void check_options(const SmoothedDecomposeOptions& o) {
   if (o.max_carve_rounds < 1) throw InvalidArgumentError("decompose_smoothed: max_carve_rounds must be >= 1");
   if (!(o.hausdorff_error > 0) || !std::isfinite(o.hausdorff_error))
     throw InvalidArgumentError("decompose_smoothed: the Hausdorff error bound must be a positive fraction");
-}
-
-BoundingBox box_of(const Mesh& m) { return bounding_box(m); }
-
-bool boxes_meet(const BoundingBox& a, const BoundingBox& b) {
-  return (a.min.array() <= b.max.array()).all() && (b.min.array() <= a.max.array()).all();
 }
 
 //! The boxes grown by `margin` on every side but the base (its -axis side),
@@ -120,7 +115,7 @@ std::vector<int> vertices_to_hold(const Mesh& restored, const Mesh& smoothed, co
     for (int v : restored.faces[static_cast<std::size_t>(f)]) out.push_back(v);
   for (std::size_t b : failed) {
     const Block& block = blocks[b];
-    BoundingBox box = box_of(block.mesh);
+    BoundingBox box = bounding_box(block.mesh);
     const double pad = 1e-9 * std::max(1.0, box.diagonal());
     box.min.array() -= pad;
     box.max.array() += pad;
@@ -129,7 +124,7 @@ std::vector<int> vertices_to_hold(const Mesh& restored, const Mesh& smoothed, co
     for (std::size_t f = 0; f < restored.faces.size(); ++f) {
       BoundingBox fb;
       for (int v : restored.faces[f]) fb.extend(restored.vertices[static_cast<std::size_t>(v)]);
-      if (!boxes_meet(fb, box)) continue;
+      if (!detail::boxes_touch(fb, box)) continue;
       for (int v : restored.faces[f]) near.push_back(v);
       if (face_normal_scaled(restored, f).dot(d) < 0)
         for (int v : restored.faces[f]) away.push_back(v);
@@ -215,7 +210,7 @@ SmoothedDecomposeResult decompose_smoothed(const Mesh& input_mesh, const Smoothe
         if (restored.mesh.vertices[v] != smoothed_c.vertices[v]) {
           const Vec3& p = restored.mesh.vertices[v];
           for (std::size_t b : failed) {
-            const BoundingBox box = box_of(blocks[b].mesh);
+            const BoundingBox box = bounding_box(blocks[b].mesh);
             if ((p.array() >= box.min.array()).all() && (p.array() <= box.max.array()).all())
               more.push_back(static_cast<int>(v));
           }
