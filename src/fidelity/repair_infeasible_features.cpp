@@ -45,32 +45,7 @@ void check_options(const RepairOptions& o) {
     throw InvalidArgumentError("repair: Taubin mu must be 0 (plain Laplacian) or in (-1, -lambda)");
 }
 
-//! Vertex neighbours (CSR, sorted, unique).
-struct Neighbours {
-  std::vector<int> start, ids;
-  int begin(int v) const { return start[static_cast<std::size_t>(v)]; }
-  int end(int v) const { return start[static_cast<std::size_t>(v) + 1]; }
-};
-
-Neighbours vertex_neighbours(const Mesh& mesh) {
-  const std::size_t nv = mesh.vertices.size();
-  std::vector<std::vector<int>> lists(nv);
-  for (const Triangle& t : mesh.faces)
-    for (int e = 0; e < 3; ++e) {
-      lists[static_cast<std::size_t>(t[e])].push_back(t[(e + 1) % 3]);
-      lists[static_cast<std::size_t>(t[e])].push_back(t[(e + 2) % 3]);
-    }
-  Neighbours n;
-  n.start.assign(nv + 1, 0);
-  for (std::size_t v = 0; v < nv; ++v) {
-    std::sort(lists[v].begin(), lists[v].end());
-    lists[v].erase(std::unique(lists[v].begin(), lists[v].end()), lists[v].end());
-    n.start[v + 1] = n.start[v] + static_cast<int>(lists[v].size());
-  }
-  n.ids.reserve(static_cast<std::size_t>(n.start[nv]));
-  for (const auto& l : lists) n.ids.insert(n.ids.end(), l.begin(), l.end());
-  return n;
-}
+using Neighbours = VertexNeighbours;
 
 //! Vertices of the features (sorted, unique).
 std::vector<int> feature_vertices(const FeasibilityResult& features) {

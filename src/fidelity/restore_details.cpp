@@ -50,30 +50,15 @@ void check_input(const Mesh& original, const Mesh& smoothed, const std::vector<H
         throw InvalidArgumentError("restore_details: held vertex " + std::to_string(v) + " is not a vertex");
 }
 
-//! Sorted, unique neighbours of every vertex (through face edges).
-std::vector<std::vector<int>> vertex_neighbours(const Mesh& mesh) {
-  std::vector<std::vector<int>> nb(mesh.vertices.size());
-  for (const Triangle& t : mesh.faces)
-    for (int e = 0; e < 3; ++e) {
-      nb[static_cast<std::size_t>(t[static_cast<std::size_t>(e)])].push_back(t[static_cast<std::size_t>((e + 1) % 3)]);
-      nb[static_cast<std::size_t>(t[static_cast<std::size_t>((e + 1) % 3)])].push_back(t[static_cast<std::size_t>(e)]);
-    }
-  for (auto& n : nb) {
-    std::sort(n.begin(), n.end());
-    n.erase(std::unique(n.begin(), n.end()), n.end());
-  }
-  return nb;
-}
-
 //! The uniform Laplacian: (L v)_i = v_i - mean of the neighbours of i (a
 //! vertex without neighbours: v_i).
-SparseMatrix uniform_laplacian(const std::vector<std::vector<int>>& nb) {
-  const auto n = static_cast<Eigen::Index>(nb.size());
+SparseMatrix uniform_laplacian(const VertexNeighbours& nb) {
+  const auto n = static_cast<Eigen::Index>(nb.start.size() - 1);
   std::vector<Eigen::Triplet<double>> entries;
-  for (std::size_t i = 0; i < nb.size(); ++i) {
-    entries.emplace_back(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i), 1.0);
-    const double w = nb[i].empty() ? 0.0 : -1.0 / static_cast<double>(nb[i].size());
-    for (int j : nb[i]) entries.emplace_back(static_cast<Eigen::Index>(i), j, w);
+  for (int i = 0; i < static_cast<int>(n); ++i) {
+    entries.emplace_back(i, i, 1.0);
+    const double w = nb.count(i) == 0 ? 0.0 : -1.0 / static_cast<double>(nb.count(i));
+    for (int k = nb.begin(i); k < nb.end(i); ++k) entries.emplace_back(i, nb.at(k), w);
   }
   SparseMatrix L(n, n);
   L.setFromTriplets(entries.begin(), entries.end());
@@ -167,7 +152,7 @@ RestoreDetailsResult restore_details(const Mesh& original, const Mesh& smoothed,
   }
 
   // 3. active set
-  const std::vector<std::vector<int>> nb = vertex_neighbours(original);
+  const VertexNeighbours nb = vertex_neighbours(original);
   const SparseMatrix L = uniform_laplacian(nb);
   Eigen::MatrixX3d o(static_cast<Eigen::Index>(n), 3);
   for (std::size_t v = 0; v < n; ++v) o.row(static_cast<Eigen::Index>(v)) = original.vertices[v].transpose();

@@ -56,6 +56,25 @@ double signed_volume(const Mesh& mesh) {
   return volume / 6.0;
 }
 
+VertexNeighbours vertex_neighbours(const Mesh& mesh) {
+  const std::size_t nv = mesh.vertices.size();
+  std::vector<std::vector<int>> lists(nv);
+  for (const Triangle& t : mesh.faces)
+    for (std::size_t e = 0; e < 3; ++e)
+      for (std::size_t o : {(e + 1) % 3, (e + 2) % 3})
+        if (t[o] != t[e]) lists[static_cast<std::size_t>(t[e])].push_back(t[o]);  // a face repeating a vertex: not its own
+  VertexNeighbours n;
+  n.start.assign(nv + 1, 0);
+  for (std::size_t v = 0; v < nv; ++v) {
+    std::sort(lists[v].begin(), lists[v].end());
+    lists[v].erase(std::unique(lists[v].begin(), lists[v].end()), lists[v].end());
+    n.start[v + 1] = n.start[v] + static_cast<int>(lists[v].size());
+  }
+  n.ids.reserve(static_cast<std::size_t>(n.start[nv]));
+  for (const auto& l : lists) n.ids.insert(n.ids.end(), l.begin(), l.end());
+  return n;
+}
+
 double average_edge_length(const Mesh& mesh) {
   std::vector<std::pair<int, int>> edges;
   edges.reserve(mesh.num_faces() * 3);

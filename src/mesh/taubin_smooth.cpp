@@ -59,24 +59,9 @@ Connectivity build_connectivity(const Mesh& mesh) {
   std::vector<int> fill(c.faces.start.begin(), c.faces.start.end() - 1);
   for (std::size_t f = 0; f < mesh.faces.size(); ++f)
     for (int v : mesh.faces[f]) c.faces.ids[static_cast<std::size_t>(fill[static_cast<std::size_t>(v)]++)] = static_cast<int>(f);
-  // Neighbours from the incident faces.
-  std::vector<std::vector<int>> lists(nv);
-  parallel_for(
-      0, nv,
-      [&](std::size_t v) {
-        auto& list = lists[v];
-        for (int i = c.faces.begin(static_cast<int>(v)); i < c.faces.end(static_cast<int>(v)); ++i)
-          for (int w : mesh.faces[static_cast<std::size_t>(c.faces.at(i))])
-            if (w != static_cast<int>(v)) list.push_back(w);
-        std::sort(list.begin(), list.end());
-        list.erase(std::unique(list.begin(), list.end()), list.end());
-      },
-      1024);
-  c.neighbours.start.assign(nv + 1, 0);
-  for (std::size_t v = 0; v < nv; ++v)
-    c.neighbours.start[v + 1] = c.neighbours.start[v] + static_cast<int>(lists[v].size());
-  c.neighbours.ids.reserve(static_cast<std::size_t>(c.neighbours.start[nv]));
-  for (const auto& l : lists) c.neighbours.ids.insert(c.neighbours.ids.end(), l.begin(), l.end());
+  const VertexNeighbours n = vertex_neighbours(mesh);
+  c.neighbours.start = n.start;
+  c.neighbours.ids = n.ids;
   return c;
 }
 

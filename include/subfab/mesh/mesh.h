@@ -68,6 +68,21 @@ double signed_volume(const Mesh& mesh);
 //! Mean length of the mesh's edges (each undirected edge counted once).
 double average_edge_length(const Mesh& mesh);
 
+//! The neighbours of every vertex through the faces' edges, as compressed
+//! rows: vertex v's are ids[start[v] .. start[v + 1]), sorted and unique
+//! (never v itself).
+struct VertexNeighbours {
+  std::vector<int> start, ids;  // #V + 1 offsets; neighbour ids
+  int begin(int v) const { return start[static_cast<std::size_t>(v)]; }
+  int end(int v) const { return start[static_cast<std::size_t>(v) + 1]; }
+  int at(int i) const { return ids[static_cast<std::size_t>(i)]; }
+  int count(int v) const { return end(v) - begin(v); }
+};
+
+//! The vertex neighbours of `mesh` (see VertexNeighbours); a vertex no face
+//! references has none. Face indices must be in range.
+VertexNeighbours vertex_neighbours(const Mesh& mesh);
+
 //! Removes vertices no face references and renumbers the faces.
 //! Returns the number of vertices removed.
 std::size_t remove_unreferenced_vertices(Mesh& mesh);
