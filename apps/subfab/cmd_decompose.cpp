@@ -202,6 +202,10 @@ int run_decompose(const DecomposeArgs& args) {
         << " block(s) stick out of the input (undercuts filled), measured deviation bound "
         << result.deviation_bound << " (" << result.deviation_bound / diagonal
         << " x diagonal); every block is an exact height field (subfab validate checks the deviation)";
+    if (result.num_features_within_tolerance > 0)
+      msg << "; " << result.num_features_within_tolerance
+          << " crease(s)/spike(s) no exact block can cover were left to the tolerance instead of the thin-feature "
+             "repair";
     progress.warn(msg.str());
   }
   if (!args.common.quiet) progress.print_timings(std::cerr);
@@ -238,6 +242,7 @@ int run_decompose(const DecomposeArgs& args) {
     j["num_tolerance_merges"] = result.num_tolerance_merges;
     j["num_sticking_out"] = std::count(result.filled.begin(), result.filled.end(), char{1});
     j["deviation_bound"] = result.deviation_bound;
+    j["num_features_within_tolerance"] = result.num_features_within_tolerance;
     j["timings_s"] = {{"orient", t.orient}, {"repair", t.repair},   {"field", t.field}, {"grow", t.grow},
                       {"cover", t.cover},   {"resolve", t.resolve}, {"carve", t.carve}, {"tolerance", t.tolerance}, {"total", t.total}};
     std::cout << j.dump(2) << "\n";
@@ -282,7 +287,9 @@ void add_decompose_options(CLI::App& sub, DecomposeArgs& args) {
                  "Deviation allowed, as a fraction of the bounding-box diagonal (default 0: exact blocks). "
                  "Touching blocks are merged into the shape a 3-axis machine mills of their union (undercuts "
                  "filled) while the symmetric Hausdorff distance between the model made and the input stays "
-                 "within it; every block stays an exact height field and blocks do not overlap")
+                 "within it; every block stays an exact height field and blocks do not overlap. Creases and spikes "
+                 "no exact block can cover are left to the tolerance where their undercuts are within it (no "
+                 "thin-feature repair there)")
       ->check(CLI::NonNegativeNumber);
   sub.add_option("--tolerance-abs", args.tolerance_abs,
                  "Deviation allowed in model units (with --tolerance the smaller wins)")

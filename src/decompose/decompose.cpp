@@ -253,10 +253,12 @@ std::vector<Block> carve_stages(const Mesh& solid, const std::vector<std::uint8_
 //! Lowers by one level (a smaller depth fraction, then none) the
 //! allowances for the axis of every failed block, on the faces allowed for
 //! it whose bounding box meets the block's (a block fails where the
-//! material left under its allowed faces is too deep or collides). Returns
-//! the number of allowances lowered.
+//! material left under its allowed faces is too deep or collides), except
+//! the pinned ones (`pinned`, per face, may be empty: the allowances a thin
+//! feature needs, see pinned_allowances()). Returns the number of
+//! allowances lowered.
 std::size_t lower_allowances(const Mesh& solid, const MillToleranceResult& milled, const std::vector<std::uint8_t>& allowed,
-                             std::vector<std::array<std::uint8_t, 3>>& level) {
+                             const std::vector<std::uint8_t>& pinned, std::vector<std::array<std::uint8_t, 3>>& level) {
   std::vector<BoundingBox> face_boxes(solid.num_faces());
   for (std::size_t f = 0; f < solid.num_faces(); ++f)
     for (int v : solid.faces[f]) face_boxes[f].extend(solid.vertices[static_cast<std::size_t>(v)]);
@@ -267,7 +269,7 @@ std::size_t lower_allowances(const Mesh& solid, const MillToleranceResult& mille
     const int k = axis_dimension(milled.blocks[i].axis);
     const auto bit = static_cast<std::uint8_t>(1u << k);
     for (std::size_t f = 0; f < solid.num_faces(); ++f) {
-      if ((allowed[f] & bit) && detail::boxes_touch(face_boxes[f], box))
+      if ((allowed[f] & bit) && !(!pinned.empty() && (pinned[f] & bit)) && detail::boxes_touch(face_boxes[f], box))
         lower[f][static_cast<std::size_t>(k)] = 1;
     }
   }
@@ -314,6 +316,150 @@ void merge_stage(std::vector<Block> blocks, std::vector<char>& filled, const Dec
   }
 }
 
+//! Within a tolerance (issue 17): the allowances `allowed` (per face of
+//! `solid`) restricted to the faces around the features `infeasible` (the
+//! stars of their vertices: the only faces their exact tests look at), when
+//! they make every one of them coverable (find_infeasible_features() with
+//! the allowances, exact; checked again with the restriction); empty when
+//! some feature stays infeasible under them. These are the allowances a
+//! thin feature needs instead of the thin-feature repair: the stages must
+//! keep them (decompose() never lowers them).
+std::vector<std::uint8_t> pinned_allowances(const Mesh& solid, const FeasibilityResult& infeasible,
+                                            const std::vector<std::uint8_t>& allowed) {
+  FeasibilityOptions fo;
+  fo.allowed_overhangs = &allowed;
+  if (!find_infeasible_features(solid, fo).feasible()) return {};
+  std::vector<char> at_feature(solid.num_vertices(), 0);
+  for (const InfeasibleFeature& feature : infeasible.features)
+    for (int v : {feature.vertex0, feature.vertex1})
+      if (v >= 0) at_feature[static_cast<std::size_t>(v)] = 1;
+  std::vector<std::uint8_t> pinned(solid.num_faces(), 0);
+  for (std::size_t f = 0; f < solid.num_faces(); ++f)
+    for (int v : solid.faces[f])
+      if (at_feature[static_cast<std::size_t>(v)]) pinned[f] = allowed[f];
+  fo.allowed_overhangs = &pinned;
+  if (!find_infeasible_features(solid, fo).feasible()) return {};
+  return pinned;
+}
+
+//! Stage 1b of decompose(): the local repair of the features `infeasible`
+//! of result.canonical (4.3.5); replaces result.canonical by the repaired
+//! solid and sets result.repaired_input and result.repair.
+void repair_stage(const Mesh& input, const FeasibilityResult& infeasible, const DecomposeOptions& options,
+                  DecomposeResult& result) {
+  Progress* progress = options.progress;
+  StageScope repair_stage(progress, "repair");
+  const auto tr = Clock::now();
+  RepairOptions ro;
+  ro.max_deviation = options.max_deviation;
+  ro.progress = progress;
+  if (progress)
+    progress->warn(std::to_string(infeasible.size()) + " feature(s) no height-field block can cover in the " +
+                   (options.orient ? "chosen" : "input") + " frame (" +
+                   describe_infeasible_features(infeasible, input, 3) +
+                   "; input coordinates): repairing them by local smoothing (--exact refuses instead)");
+  RepairResult repaired;
+  try {
+    repaired = repair_infeasible_features(result.canonical, ro);
+  } catch (const AlgorithmError& e) {
+    std::string within;
+    if (result.tolerance > 0)
+      within = " (within the tolerance, the faces there may not lean past vertical: their undercuts are deeper "
+               "than the tolerance allows, or the blocks holding them failed the measure)";
+    throw AlgorithmError(std::string("the local repair of infeasible features failed: ") + e.what() + within +
+                         ". Without it: " + infeasible_message(infeasible, input, options.orient));
+  }
+  Mesh in_input = repaired_in_input_frame(input, result.canonical, repaired.mesh, result.rotation);
+  // The rounding back to the input frame must keep a valid solid.
+  require_closed_solid_result(in_input, "the repaired mesh is not a valid solid in the input frame: ");
+  result.repair = repaired.report;
+  result.canonical = std::move(repaired.mesh);
+  result.num_input_vertices = result.canonical.num_vertices();
+  result.repaired_input = std::move(in_input);
+  result.timings.repair += seconds_since(tr);
+}
+
+//! The undercut depths of `solid` for the allowances (tolerance_allowances.h).
+std::vector<std::array<double, 3>> depths_within(const Mesh& solid, const DecomposeOptions& options,
+                                                 const DecomposeResult& result) {
+  const std::vector<double>& fractions = options.tolerance_depth_fractions;
+  ToleranceAllowanceOptions ao;
+  ao.tolerance = result.tolerance;
+  ao.depth_fraction = *std::max_element(fractions.begin(), fractions.end());
+  ao.max_height = result.max_height;
+  return undercut_depths(solid, ao);
+}
+
+//! The milled shapes of `blocks`, measured within result.tolerance
+//! (mill_within_tolerance()), timed as "tolerance".
+MillToleranceResult mill_stage(const Mesh& solid, std::vector<Block> blocks, const DecomposeOptions& options,
+                               DecomposeResult& result) {
+  StageScope stage(options.progress, "mill");
+  const auto t = Clock::now();
+  MillToleranceOptions mo;
+  mo.tolerance = result.tolerance;
+  mo.progress = options.progress;
+  MillToleranceResult milled = mill_within_tolerance(solid, std::move(blocks), mo);
+  result.timings.tolerance += seconds_since(t);
+  return milled;
+}
+
+//! Stages 2-6 of decompose() within a tolerance (issue 17) on `solid`:
+//! under the allowances of the faces whose undercut is within it, then
+//! every block replaced by its milled shape and measured; where one fails,
+//! its allowances are lowered and the stages run again, the last round
+//! under the pinned allowances only (`pinned`: those a thin feature needs;
+//! empty or all zero: none, the exact path). Sets `blocks` and `filled`.
+//! Returns false when the blocks still fail the measure under the pinned
+//! allowances alone (never when none are pinned).
+bool stages_within_tolerance(const Mesh& solid, const std::vector<std::array<double, 3>>& depths,
+                             const std::vector<std::uint8_t>& pinned, const Mesh& input,
+                             const DecomposeOptions& options, DecomposeResult& result, std::vector<Block>& blocks,
+                             std::vector<char>& filled) {
+  Progress* progress = options.progress;
+  const std::vector<double>& fractions = options.tolerance_depth_fractions;
+  std::vector<std::array<std::uint8_t, 3>> level(solid.num_faces(), {0, 0, 0});
+  std::vector<std::uint8_t> allowed = allowances_at(depths, level, fractions, result.tolerance);
+  const std::vector<std::uint8_t> last = pinned.empty() ? std::vector<std::uint8_t>(solid.num_faces(), 0) : pinned;
+  result.num_allowed_faces = count_allowed_faces(allowed);
+  if (progress)
+    progress->info(std::to_string(result.num_allowed_faces) + " of " + std::to_string(solid.num_faces()) +
+                   " faces may lean past vertical (undercut within " + std::to_string(fractions.front()) +
+                   " x the tolerance)");
+  for (int round = 0;; ++round) {
+    const std::size_t num_allowed = count_allowed_faces(allowed);
+    blocks = carve_stages(solid, num_allowed > 0 ? &allowed : nullptr, input, options, result);
+    if (num_allowed == 0) return true;
+    ++result.num_tolerance_rounds;
+    MillToleranceResult milled = mill_stage(solid, std::move(blocks), options, result);
+    if (milled.num_failed() == 0) {
+      blocks = std::move(milled.blocks);
+      filled = std::move(milled.filled);
+      result.deviation_bound = milled.max_deviation;
+      return true;
+    }
+    if (allowed == last) return false;  // nothing left to lower
+    const std::size_t before = num_allowed;
+    if (round + 1 >= options.tolerance_rounds) {
+      allowed = last;
+    } else {
+      const std::vector<std::uint8_t> previous = allowed;
+      lower_allowances(solid, milled, allowed, pinned, level);
+      allowed = allowances_at(depths, level, fractions, result.tolerance);
+      if (allowed == previous) allowed = last;  // the failing blocks meet pinned allowances only
+    }
+    if (progress) {
+      std::string first;
+      for (std::size_t i = 0; i < milled.failures.size() && first.empty(); ++i)
+        if (!milled.failures[i].empty()) first = "block " + std::to_string(i + 1) + ": " + milled.failures[i];
+      progress->info(std::to_string(milled.num_failed()) + " block(s) beyond the tolerance (" + first + "); " +
+                     std::to_string(before - count_allowed_faces(allowed)) +
+                     " faces lose allowances, decomposing again with " + std::to_string(count_allowed_faces(allowed)) +
+                     " faces allowed");
+    }
+  }
+}
+
 }  // namespace
 
 DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
@@ -330,6 +476,8 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
 
   // 1. orient (4.3.1)
   FeasibilityResult infeasible;
+  std::vector<std::array<double, 3>> depths;  // within a tolerance: per face of result.canonical
+  std::vector<std::uint8_t> pinned;           // within a tolerance: the allowances the features need
   {
     StageScope stage(progress, "orient");
     const auto t = Clock::now();
@@ -343,99 +491,69 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
     result.canonical = rotate_into_frame(input, result.rotation, OrientOptions{}.snap_tolerance);
     if (!options.orient) infeasible = find_infeasible_features(result.canonical);
     result.timings.orient = seconds_since(t);
+    // Within a tolerance, creases and spikes whose faces may lean past
+    // vertical (their undercuts are within it) need no repair: the
+    // allowances they need are pinned, and the blocks holding them are
+    // milled and measured like any other (issue 17).
+    if (result.tolerance > 0) {
+      const auto tt = Clock::now();
+      depths = depths_within(result.canonical, options, result);
+      if (!infeasible.feasible()) {
+        const std::vector<std::uint8_t> allowed =
+            allowances_at(depths, std::vector<std::array<std::uint8_t, 3>>(depths.size(), {0, 0, 0}),
+                          options.tolerance_depth_fractions, result.tolerance);
+        pinned = pinned_allowances(result.canonical, infeasible, allowed);
+        if (!pinned.empty()) {
+          result.num_features_within_tolerance = infeasible.size();
+          if (progress)
+            progress->info(std::to_string(infeasible.size()) + " feature(s) no exact height-field block can cover (" +
+                           describe_infeasible_features(infeasible, input, 3) +
+                           "; input coordinates) are within the tolerance: " +
+                           std::to_string(count_allowed_faces(pinned)) + " faces there may lean past vertical");
+        }
+      }
+      result.timings.tolerance += seconds_since(tt);
+    }
     // Fail before the expensive stages when no refinement can ever cover the
     // surface, unless the features are to be repaired (4.3.5).
-    if (!infeasible.feasible() && !options.repair)
+    if (!infeasible.feasible() && pinned.empty() && !options.repair)
       throw AlgorithmError(infeasible_message(infeasible, input, options.orient));
   }
   // 1b. local repair of the infeasible features (4.3.5)
-  if (!infeasible.feasible()) {
-    StageScope repair_stage(progress, "repair");
-    const auto tr = Clock::now();
-    RepairOptions ro;
-    ro.max_deviation = options.max_deviation;
-    ro.progress = progress;
-    if (progress)
-      progress->warn(std::to_string(infeasible.size()) + " feature(s) no height-field block can cover in the " +
-                     (options.orient ? "chosen" : "input") + " frame (" +
-                     describe_infeasible_features(infeasible, input, 3) +
-                     "; input coordinates): repairing them by local smoothing (--exact refuses instead)");
-    RepairResult repaired;
-    try {
-      repaired = repair_infeasible_features(result.canonical, ro);
-    } catch (const AlgorithmError& e) {
-      throw AlgorithmError(std::string("the local repair of infeasible features failed: ") + e.what() +
-                           ". Without it: " + infeasible_message(infeasible, input, options.orient));
-    }
-    Mesh in_input = repaired_in_input_frame(input, result.canonical, repaired.mesh, result.rotation);
-    // The rounding back to the input frame must keep a valid solid.
-    require_closed_solid_result(in_input, "the repaired mesh is not a valid solid in the input frame: ");
-    result.repair = repaired.report;
-    result.canonical = std::move(repaired.mesh);
-    result.num_input_vertices = result.canonical.num_vertices();
-    result.repaired_input = std::move(in_input);
-    result.timings.repair = seconds_since(tr);
+  if (!infeasible.feasible() && pinned.empty()) {
+    repair_stage(input, infeasible, options, result);
+    if (result.tolerance > 0) depths = depths_within(result.canonical, options, result);
   }
 
   // 2.-6. fields, grow, cover, snap, resolve, carve. Within a tolerance
   //    (issue 17): under the allowances of the faces whose undercut is
   //    within it, then every block replaced by its milled shape and
   //    measured; where one fails, its allowances are taken back and the
-  //    stages run again (the last round without any: the exact path).
-  const Mesh solid = result.canonical;  // before grow's local refinement
-  const DecomposeResult base = result;  // before the stages (within a tolerance the exact path is made too)
+  //    stages run again (the last round with the pinned allowances only,
+  //    without any when none are pinned: the exact path). When blocks still
+  //    fail with the pinned allowances only, the features they cover are
+  //    repaired after all (4.3.5) and the stages run on the repaired solid.
+  Mesh solid = result.canonical;  // before grow's local refinement
+  DecomposeResult base = result;  // before the stages (within a tolerance the exact path is made too)
   std::vector<Block> blocks;
   std::vector<char> filled;
   if (result.tolerance > 0) {
-    auto tt = Clock::now();
-    const std::vector<double>& fractions = options.tolerance_depth_fractions;
-    ToleranceAllowanceOptions ao;
-    ao.tolerance = result.tolerance;
-    ao.depth_fraction = *std::max_element(fractions.begin(), fractions.end());
-    ao.max_height = result.max_height;
-    const std::vector<std::array<double, 3>> depths = undercut_depths(solid, ao);
-    std::vector<std::array<std::uint8_t, 3>> level(solid.num_faces(), {0, 0, 0});
-    std::vector<std::uint8_t> allowed = allowances_at(depths, level, fractions, result.tolerance);
-    result.num_allowed_faces = count_allowed_faces(allowed);
-    if (progress)
-      progress->info(std::to_string(result.num_allowed_faces) + " of " + std::to_string(solid.num_faces()) +
-                     " faces may lean past vertical (undercut within " + std::to_string(fractions.front()) +
-                     " x the tolerance)");
-    result.timings.tolerance += seconds_since(tt);
-    for (int round = 0;; ++round) {
-      const std::size_t num_allowed = count_allowed_faces(allowed);
-      blocks = carve_stages(solid, num_allowed > 0 ? &allowed : nullptr, input, options, result);
-      if (num_allowed == 0) break;
-      ++result.num_tolerance_rounds;
-      StageScope stage(progress, "mill");
-      tt = Clock::now();
-      MillToleranceOptions mo;
-      mo.tolerance = result.tolerance;
-      mo.progress = progress;
-      MillToleranceResult milled = mill_within_tolerance(solid, std::move(blocks), mo);
-      result.timings.tolerance += seconds_since(tt);
-      if (milled.num_failed() == 0) {
-        blocks = std::move(milled.blocks);
-        filled = std::move(milled.filled);
-        result.deviation_bound = milled.max_deviation;
-        break;
-      }
-      std::size_t lowered = 0;
-      if (round + 1 >= options.tolerance_rounds) {
-        lowered = num_allowed;
-        allowed.assign(allowed.size(), 0);
-      } else {
-        lowered = lower_allowances(solid, milled, allowed, level);
-        allowed = allowances_at(depths, level, fractions, result.tolerance);
-      }
-      if (progress) {
-        std::string first;
-        for (std::size_t i = 0; i < milled.failures.size() && first.empty(); ++i)
-          if (!milled.failures[i].empty()) first = "block " + std::to_string(i + 1) + ": " + milled.failures[i];
-        progress->info(std::to_string(milled.num_failed()) + " block(s) beyond the tolerance (" + first + "); " +
-                       std::to_string(lowered) + " allowances lowered, decomposing again with " +
-                       std::to_string(count_allowed_faces(allowed)) + " faces allowed");
-      }
+    if (!stages_within_tolerance(solid, depths, pinned, input, options, result, blocks, filled)) {
+      if (progress)
+        progress->warn("the blocks holding the feature(s) within the tolerance fail its measure with only their "
+                       "allowances: repairing the features instead");
+      if (!options.repair)
+        throw AlgorithmError("within the tolerance, the blocks holding the features no exact block can cover fail "
+                             "the tolerance's measure (--exact refuses to repair them): " +
+                             infeasible_message(infeasible, input, options.orient));
+      result.num_features_within_tolerance = 0;
+      pinned.clear();
+      repair_stage(input, infeasible, options, result);
+      solid = result.canonical;
+      depths = depths_within(solid, options, result);
+      base = result;
+      filled.clear();
+      stages_within_tolerance(solid, depths, pinned, input, options, result, blocks, filled);
     }
   } else {
     blocks = carve_stages(solid, nullptr, input, options, result);
@@ -444,14 +562,27 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
   // 7. merge (4.3.4 post-processing)
   merge_stage(std::move(blocks), filled, options, result);
   // Within a tolerance, the allowances can also cost blocks (they change the
-  // cover): the exact decomposition is made too and kept when it has no
-  // more blocks.
+  // cover): the decomposition under the pinned allowances only (none: the
+  // exact one) is made too and kept when it has no more blocks (and, with
+  // pinned allowances, its milled shapes pass the measure).
   if (result.tolerance > 0 && !filled.empty()) {
     DecomposeResult exact = base;
-    std::vector<char> none;
-    merge_stage(carve_stages(solid, nullptr, input, options, exact), none, options, exact);
-    if (progress)
-      progress->info("exact decomposition: " + std::to_string(exact.blocks.size()) + " blocks, within the tolerance: " +
+    const bool any_pinned = count_allowed_faces(pinned) > 0;
+    std::vector<Block> exact_blocks = carve_stages(solid, any_pinned ? &pinned : nullptr, input, options, exact);
+    std::vector<char> exact_filled;
+    bool usable = true;
+    if (any_pinned) {
+      MillToleranceResult milled = mill_stage(solid, std::move(exact_blocks), options, exact);
+      usable = milled.num_failed() == 0;
+      exact_blocks = std::move(milled.blocks);
+      exact_filled = std::move(milled.filled);
+      exact.deviation_bound = milled.max_deviation;
+    }
+    if (usable) merge_stage(std::move(exact_blocks), exact_filled, options, exact);
+    if (progress && usable)
+      progress->info(std::string(any_pinned ? "decomposition with the features' allowances only: "
+                                            : "exact decomposition: ") +
+                     std::to_string(exact.blocks.size()) + " blocks, within the tolerance: " +
                      std::to_string(result.blocks.size()));
     DecomposeTimings& t = exact.timings;
     const DecomposeTimings& a = result.timings;
@@ -462,11 +593,11 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
     t.resolve += a.resolve - b.resolve;
     t.carve += a.carve - b.carve;
     t.tolerance += a.tolerance - b.tolerance;
-    if (exact.blocks.size() <= result.blocks.size()) {
+    if (usable && exact.blocks.size() <= result.blocks.size()) {
       exact.num_allowed_faces = result.num_allowed_faces;
       exact.num_tolerance_rounds = result.num_tolerance_rounds;
       result = std::move(exact);
-      filled.clear();
+      filled = std::move(exact_filled);
     } else {
       result.timings = t;
     }

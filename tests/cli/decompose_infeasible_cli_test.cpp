@@ -35,5 +35,26 @@ TEST(DecomposeCli, ImpossibleCreasesFailEarlyWithTheReason) {
   EXPECT_NE(kept.output.find("in the input frame"), std::string::npos) << kept.output;
 }
 
+
+// Regression (issue 17): a spike no axis sees whose thin-feature repair
+// fails: exit 3 at --tolerance 0, blocks within a tolerance, which validate
+// passes.
+TEST(DecomposeCli, ASpikeTheRepairCannotFixDecomposesWithinATolerance) {
+  const fs::path dir = test::temp_dir();
+  const fs::path mesh = test::data_path("regression/cube_tiny_diagonal_spike.obj");
+  const auto exact = run_subfab("decompose " + quoted(mesh) + " -o " + quoted(dir / "exact") + " --tolerance 0");
+  EXPECT_EQ(exact.exit_code, 3) << exact.output;
+  EXPECT_NE(exact.output.find("the local repair of infeasible features failed"), std::string::npos) << exact.output;
+  EXPECT_FALSE(fs::exists(dir / "exact" / "decomposition.json"));
+  const auto within = run_subfab("decompose " + quoted(mesh) + " -o " + quoted(dir / "within") +
+                                 " --tolerance 5e-4 --json");
+  ASSERT_EQ(within.exit_code, 0) << within.output;
+  EXPECT_NE(within.output.find("\"num_features_within_tolerance\": 1"), std::string::npos) << within.output;
+  EXPECT_NE(within.output.find("\"repair\": null"), std::string::npos) << within.output;
+  const auto valid = run_subfab("validate " + quoted(mesh) + " " + quoted(dir / "within"));
+  EXPECT_EQ(valid.exit_code, 0) << valid.output;
+  EXPECT_NE(valid.output.find("all checks passed"), std::string::npos) << valid.output;
+}
+
 }  // namespace
 }  // namespace subfab

@@ -10,9 +10,14 @@
 
 #include "subfab/core/error.h"
 #include "subfab/decompose/decompose.h"
+#include "subfab/decompose/export_decomposition.h"
+#include "subfab/fidelity/find_infeasible_features.h"
+#include "subfab/mesh/read_mesh.h"
 #include "subfab/validate/validate_decomposition.h"
+#include "support/block_test_shapes.h"
 #include "support/groove_shapes.h"
 #include "support/test_shapes.h"
+#include "support/test_support.h"
 
 namespace subfab {
 namespace {
@@ -141,6 +146,50 @@ TEST(ToleranceAllowances, AnAllowanceTheMeasureRefutesIsLoweredAndTheResultStays
   EXPECT_EQ(t.blocks.size(), exact);
   EXPECT_LE(t.deviation_bound, 0.9);
   for (const Block& b : t.blocks) EXPECT_TRUE(is_height_field(b.mesh, axis_direction(b.axis)));
+}
+
+
+// Regression (issue 17, "every closed model gets blocks at the default"): a
+// spike 3.3e-4 x the diagonal tall that no axis sees. The thin-feature
+// repair fails on it (its smoothing makes the surface cross itself), so the
+// exact path exits 3; within a tolerance of 5e-4 its faces may lean past
+// vertical, so it is left to the tolerance: no repair, exact blocks that
+// validate within the tolerance.
+TEST(ToleranceAllowances, ASpikeTheRepairCannotFixIsLeftToTheTolerance) {
+  const Mesh spiked = read_mesh(test::data_path("regression/cube_tiny_diagonal_spike.obj"));
+  ASSERT_FALSE(find_infeasible_features(spiked).feasible());
+  DecomposeOptions o;
+  try {
+    decompose(spiked, o);
+    ADD_FAILURE() << "the exact path decomposed the spike: the regression mesh no longer reproduces the failure";
+  } catch (const AlgorithmError& e) {
+    EXPECT_NE(std::string(e.what()).find("the local repair of infeasible features failed"), std::string::npos)
+        << e.what();
+  }
+  o.tolerance_fraction = 5e-4;
+  const DecomposeResult t = decompose(spiked, o);
+  EXPECT_EQ(t.num_features_within_tolerance, 1u);
+  EXPECT_FALSE(t.repaired_input.has_value());
+  EXPECT_EQ(t.repair.num_features, 0);
+  ASSERT_FALSE(t.blocks.empty());
+  for (const Block& b : t.blocks) {
+    EXPECT_TRUE(check_closed_solid(b.mesh).ok());
+    EXPECT_TRUE(is_height_field(b.mesh, axis_direction(b.axis)));  // exact whatever the tolerance
+  }
+  ValidationOptions vo;
+  vo.tolerance = t.tolerance;
+  const ValidationReport report =
+      validate_decomposition(spiked, test::to_validation(make_exported_blocks(spiked, t)), vo);
+  for (const CheckReport& c : report.checks)
+    EXPECT_TRUE(c.passed) << c.name << ": " << (c.failures.empty() ? c.summary : c.failures[0]);
+  // --exact refuses to repair, but nothing needs repairing within the tolerance.
+  o.repair = false;
+  EXPECT_EQ(decompose(spiked, o).blocks.size(), t.blocks.size());
+  // Below the spike's undercut (its depth > 2 x T) the features are not
+  // covered, the repair runs and fails as at T = 0.
+  o.repair = true;
+  o.tolerance_fraction = 1e-6;
+  EXPECT_THROW(decompose(spiked, o), AlgorithmError);
 }
 
 }  // namespace

@@ -82,6 +82,9 @@ struct DecomposeResult {
   std::size_t num_tolerance_merges = 0;  // merges into milled shapes within the tolerance
   std::size_t num_allowed_faces = 0;     // faces first allowed to lean past vertical (tolerance_allowances())
   int num_tolerance_rounds = 0;          // decompositions under allowances that were milled and measured
+  std::size_t num_features_within_tolerance = 0;  // infeasible features (creases, spikes) left to the tolerance
+                                                  // instead of the thin-feature repair (their faces' allowances
+                                                  // pinned); 0 when none or when they were repaired
   DecomposeTimings timings;
   // statistics
   std::size_t num_grown_boxes = 0;
@@ -99,7 +102,14 @@ struct DecomposeResult {
 //! When the chosen frame has features no height-field box can cover
 //! (find_infeasible_features()), they are repaired locally first
 //! (repair_infeasible_features(), thesis 4.3.5; result.repaired_input), or,
-//! with options.repair = false, an AlgorithmError lists them.
+//! with options.repair = false, an AlgorithmError lists them. Within a
+//! tolerance (T > 0, issue 17) the features whose faces may lean past
+//! vertical (undercut within the tolerance, tolerance_allowances()) are not
+//! repaired: those faces' allowances are pinned (never lowered) and the
+//! blocks holding them are milled and measured like the others; only when
+//! those blocks still fail the measure with no other allowance left, or
+//! when some feature's faces are not allowed, are the features repaired.
+//! Every block is an exact height field whatever T.
 //! \throw InvalidArgumentError on bad options; AlgorithmError when a stage fails.
 DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options);
 
