@@ -548,6 +548,7 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
                              infeasible_message(infeasible, input, options.orient));
       result.num_features_within_tolerance = 0;
       pinned.clear();
+      result.canonical = solid;  // the stages left grow's refinement of it there
       repair_stage(input, infeasible, options, result);
       solid = result.canonical;
       depths = depths_within(solid, options, result);

@@ -17,6 +17,7 @@
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
 #include "subfab/decompose/carve_blocks.h"
+#include "subfab/decompose/finalize_blocks.h"
 #include "subfab/decompose/merge_blocks.h"
 #include "subfab/decompose/orient_mesh.h"
 #include "subfab/validate/validate_decomposition.h"
@@ -181,6 +182,18 @@ SmoothedDecomposeResult decompose_smoothed(const Mesh& input_mesh, const Smoothe
   // Room for the details: the boxes grown by the smoothing's largest move.
   std::vector<HeightBox> room =
       room_boxes(result.ordered_boxes, report.smooth.max_displacement * (1 + 1e-6), result.max_height, machine);
+  // The restored solid in input coordinates (what the blocks decompose).
+  const Eigen::Matrix3d back = result.rotation.transpose();
+  const auto in_input_frame = [&](const Mesh& restored_c) {
+    Mesh m;
+    m.faces = input.faces;
+    m.vertices.reserve(n);
+    for (std::size_t v = 0; v < n; ++v)
+      m.vertices.push_back(restored_c.vertices[v] == original_c.vertices[v]
+                               ? input.vertices[v]
+                               : detail::rotate_accurately(back, restored_c.vertices[v]));
+    return m;
+  };
   std::vector<int> held;
   bool room_taken_back = false;
   RestoreDetailsResult restored;
@@ -200,6 +213,24 @@ SmoothedDecomposeResult decompose_smoothed(const Mesh& input_mesh, const Smoothe
     std::vector<std::size_t> failed;
     for (std::size_t b = 0; b < blocks.size(); ++b)
       if (!is_height_field(blocks[b].mesh, axis_direction(blocks[b].axis))) failed.push_back(b);
+    // The export's check (finalize_blocks(): rounded to the input frame,
+    // cleaned, closed, no self-intersection) on the blocks that pass: a block
+    // of the restored surface can cross itself once rounded (max planck).
+    {
+      DecomposeResult rounded;
+      rounded.rotation = result.rotation;
+      rounded.canonical = restored.mesh;
+      rounded.num_input_vertices = n;
+      rounded.blocks = blocks;
+      const std::vector<std::string> defects = block_defects_after_rounding(in_input_frame(restored.mesh), rounded);
+      for (std::size_t b = 0; b < blocks.size(); ++b)
+        if (!defects[b].empty() && std::find(failed.begin(), failed.end(), b) == failed.end()) {
+          failed.push_back(b);
+          ++report.num_rounding_failures;
+          if (progress) progress->info("block " + std::to_string(b + 1) + " after rounding: " + defects[b]);
+        }
+      std::sort(failed.begin(), failed.end());
+    }
     const std::vector<int> uncovered = uncovered_faces(restored.mesh, blocks, 1e-9 * diagonal);
     report.num_failed_blocks += failed.size();
     report.num_uncovered_faces += uncovered.size();
@@ -253,15 +284,7 @@ SmoothedDecomposeResult decompose_smoothed(const Mesh& input_mesh, const Smoothe
   }
   report.num_blocks = blocks.size();
 
-  // The restored solid in input coordinates (what the blocks decompose).
-  Mesh restored_input;
-  restored_input.faces = input.faces;
-  restored_input.vertices.reserve(n);
-  const Eigen::Matrix3d back = result.rotation.transpose();
-  for (std::size_t v = 0; v < n; ++v)
-    restored_input.vertices.push_back(restored.mesh.vertices[v] == original_c.vertices[v]
-                                          ? input.vertices[v]
-                                          : detail::rotate_accurately(back, restored.mesh.vertices[v]));
+  Mesh restored_input = in_input_frame(restored.mesh);
   require_closed_solid_result(restored_input, "the restored solid is not a valid solid in the input frame: ",
                               "; internal error, please report it with the input");
 

@@ -249,7 +249,10 @@ std::string block_defect(const Mesh& block, const Vec3& direction, double diagon
   return {};
 }
 
-FinalizeResult finalize_blocks(const Mesh& input, const DecomposeResult& result, const FinalizeOptions& options) {
+namespace {
+
+//! Steps 1-3 of finalize_blocks() on every block of `result`, in parallel.
+std::vector<Finished> finish_blocks(const Mesh& input, const DecomposeResult& result, const FinalizeOptions& options) {
   // Canonical input vertices -> input vertices (their exact coordinates come back).
   std::unordered_map<Vec3, int, VecHash> input_vertex;
   const std::size_t n_in = std::min({result.num_input_vertices, result.canonical.num_vertices(), input.num_vertices()});
@@ -294,6 +297,22 @@ FinalizeResult finalize_blocks(const Mesh& input, const DecomposeResult& result,
     }
   });
 
+  return done;
+}
+
+}  // namespace
+
+std::vector<std::string> block_defects_after_rounding(const Mesh& input, const DecomposeResult& result,
+                                                      const FinalizeOptions& options) {
+  std::vector<Finished> done = finish_blocks(input, result, options);
+  std::vector<std::string> out;
+  out.reserve(done.size());
+  for (Finished& f : done) out.push_back(std::move(f.error));
+  return out;
+}
+
+FinalizeResult finalize_blocks(const Mesh& input, const DecomposeResult& result, const FinalizeOptions& options) {
+  std::vector<Finished> done = finish_blocks(input, result, options);
   FinalizeResult fr;
   for (std::size_t i = 0; i < done.size(); ++i) {
     Finished& f = done[i];

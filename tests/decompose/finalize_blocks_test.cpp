@@ -293,5 +293,31 @@ TEST(FinalizeBlocks, SpotDecomposesIntoBlocksThatValidate) {
   expect_all_checks_pass(input, std::move(blocks));
 }
 
+
+// block_defects_after_rounding() says per block what finalize_blocks() would
+// throw for (decompose_smoothed()'s carve rounds treat such blocks as failed:
+// max_planck --smooth=0.005 stopped at export with a block crossing itself):
+// nothing for a valid box, the self-intersection for two boxes that cross in
+// one mesh, and finalize_blocks() throws for the same result.
+TEST(FinalizeBlocks, DefectsAfterRoundingNameTheBlocksFinalizeWouldReject) {
+  const Mesh valid = test::box_solid({0, 0, 0}, {1, 1, 1});
+  Mesh crossing = test::box_solid({2, 0, 0}, {3, 1, 1});
+  const Mesh other = test::box_solid({2.5, 0.5, 0}, {3.5, 1.5, 0.5});
+  const int offset = static_cast<int>(crossing.vertices.size());
+  crossing.vertices.insert(crossing.vertices.end(), other.vertices.begin(), other.vertices.end());
+  for (const Triangle& t : other.faces) crossing.faces.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+  DecomposeResult r;
+  r.canonical = valid;
+  r.num_input_vertices = valid.num_vertices();
+  r.blocks = {Block{valid, Axis::PosZ, 0}, Block{crossing, Axis::PosZ, 1}};
+  const std::vector<std::string> defects = block_defects_after_rounding(valid, r);
+  ASSERT_EQ(defects.size(), 2u);
+  EXPECT_EQ(defects[0], "");
+  EXPECT_NE(defects[1].find("self-intersects"), std::string::npos) << defects[1];
+  EXPECT_THROW(finalize_blocks(valid, r), AlgorithmError);
+  r.blocks.pop_back();
+  EXPECT_EQ(finalize_blocks(valid, r).blocks.size(), 1u);
+}
+
 }  // namespace
 }  // namespace subfab

@@ -192,5 +192,32 @@ TEST(ToleranceAllowances, ASpikeTheRepairCannotFixIsLeftToTheTolerance) {
   EXPECT_THROW(decompose(spiked, o), AlgorithmError);
 }
 
+
+// When the blocks holding a feature left to the tolerance fail the measure
+// even with only the feature's allowances, the feature is repaired after all
+// (the fallback) and the stages run on the repaired solid. The regression
+// spike made 50 times larger (the repair handles that one) under a depth
+// fraction so large that its faces are allowed while their fill deviates
+// more than T.
+TEST(ToleranceAllowances, AFeatureWhoseBlocksFailTheMeasureIsRepairedAfterAll) {
+  Mesh spiked = read_mesh(test::data_path("regression/cube_tiny_diagonal_spike.obj"));
+  for (std::size_t v = 8; v < spiked.num_vertices(); ++v)  // the spike's vertices, about the top face's centre
+    spiked.vertices[v] = Vec3(0.5, 0.5, 1) + 50 * (spiked.vertices[v] - Vec3(0.5, 0.5, 1));
+  DecomposeOptions o;
+  o.tolerance_fraction = 1e-3;
+  o.tolerance_rounds = 1;
+  o.tolerance_depth_fractions = {100.0};
+  const DecomposeResult t = decompose(spiked, o);
+  EXPECT_EQ(t.num_features_within_tolerance, 0u);
+  EXPECT_TRUE(t.repaired_input.has_value());
+  EXPECT_GT(t.repair.num_features, 0);
+  EXPECT_GE(t.num_tolerance_rounds, 2);  // the allowances' round and the pinned one failed
+  for (const Block& b : t.blocks) {
+    EXPECT_TRUE(check_closed_solid(b.mesh).ok());
+    EXPECT_TRUE(is_height_field(b.mesh, axis_direction(b.axis)));
+  }
+  EXPECT_LE(t.deviation_bound, t.tolerance);
+}
+
 }  // namespace
 }  // namespace subfab

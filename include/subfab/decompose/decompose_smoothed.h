@@ -14,8 +14,9 @@
 //!      box in carve order (no later block loses material): the room of its region
 //!   4. carve_blocks(restored, grown boxes)       the same boxes, same order; every
 //!      block checked to be a height field along its axis (is_height_field, the
-//!      rule of carve_blocks and validate; export's finalize_blocks verifies the
-//!      rounded blocks fully) and the surface of the restored solid checked
+//!      rule of carve_blocks and validate) and valid once rounded to the input
+//!      frame (block_defects_after_rounding(): the export's finalize_blocks()
+//!      check, self-intersections included), and the surface of the restored solid checked
 //!      to lie on the blocks; where a block fails or a face is not covered, the
 //!      vertices there are held at their smoothed positions and 3.-4. run
 //!      again (at most max_carve_rounds times; when no vertex is left to hold,
@@ -57,6 +58,7 @@ struct SmoothedDecomposeReport {
   std::size_t num_blocks = 0;           // blocks made from the restored solid
   int num_carve_rounds = 0;             // restorations carved (1: the first one held)
   std::size_t num_failed_blocks = 0;    // blocks that failed the checks, summed over rounds
+  std::size_t num_rounding_failures = 0;  // of which failed only once rounded to the input frame (finalize_blocks())
   std::size_t num_uncovered_faces = 0;  // restored faces not on the blocks, summed over rounds
   std::size_t num_held = 0;             // vertices held at their smoothed positions after failed carves
   double bbox_diagonal = 0;         // of the input, model units

@@ -80,6 +80,15 @@ struct FinalizeResult {
 //! \throw AlgorithmError naming the block when one cannot be made valid.
 FinalizeResult finalize_blocks(const Mesh& input, const DecomposeResult& result, const FinalizeOptions& options = {});
 
+//! Steps 1-3 of finalize_blocks() without the throw: per block of `result`,
+//! what finalize_blocks() would report wrong with it after rounding to the
+//! input frame and cleanup (block_defect(); empty: it would be valid, or
+//! dropped as thinner than the tolerance). decompose_smoothed() checks its
+//! carve rounds with it (a block made of a restored surface can cross
+//! itself once rounded). Same parameters as finalize_blocks().
+std::vector<std::string> block_defects_after_rounding(const Mesh& input, const DecomposeResult& result,
+                                                      const FinalizeOptions& options = {});
+
 //! The cleanup of step 2 on one block: collapses edges shorter than
 //! `tolerance` (model units) and flips the longest edge of caps lower than
 //! it, until nothing changes. Vertices are kept in their order (unused ones
