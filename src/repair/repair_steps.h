@@ -66,7 +66,11 @@ MeshRepairStep separate_pinches(RepairSurface& mesh, double distance);
 MeshRepairStep split_pinched_vertices(RepairSurface& mesh);
 
 // Steps that make it a solid (resolve_self_intersections.cpp).
-MeshRepairStep resolve_self_intersections(RepairSurface& mesh, std::size_t max_rounds);
+//! With `candidates`, the search for crossings is restricted to pairs of
+//! those faces: the caller knows that no two other faces can cross (see
+//! faces_that_may_cross in repair_mesh.cpp); null: every face.
+MeshRepairStep resolve_self_intersections(RepairSurface& mesh, std::size_t max_rounds,
+                                          const std::vector<RepairSurface::Face_index>* candidates = nullptr);
 MeshRepairStep orient_outward(RepairSurface& mesh);
 
 //! The mesh as a plain Mesh (vertices renumbered densely, in index order).
