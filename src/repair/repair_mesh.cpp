@@ -117,9 +117,9 @@ detail::SurfaceDeviation measure_deviation(const Mesh& reference, const Mesh& re
 //! steps), and every face whose bounding box meets one of theirs. Two other
 //! faces are input faces, which do not cross (the steps leave no two vertices
 //! at one position, so two such faces share in the surface at least the
-//! corners they share in the input). The search on these alone took the
-//! self-intersection stage of a 1.1M-face scan with 5 filled holes from 7.2 s
-//! 7.8 s wall at 16% CPU (bench/RESULTS.md, "Repair"); the result is still checked whole.
+//! corners they share in the input). On a 1.1M-face scan with 5 filled holes
+//! this stage's time fell to a fifth (42.9 -> 7.8 s wall on the same loaded
+//! machine; bench/RESULTS.md, "Repair"); the result is still checked whole.
 std::vector<detail::RepairSurface::Face_index> faces_that_may_cross(const detail::RepairSurface& surface,
                                                                     const Mesh& plain, const Mesh& input) {
   using Face = detail::RepairSurface::Face_index;
