@@ -16,6 +16,8 @@ packages=(
   nlohmann-json3-dev
   libgtest-dev libgmock-dev
   zlib1g-dev
+  # 3MF input: libzip opens the zip, expat parses 3D/3dmodel.model.
+  libzip-dev libexpat1-dev
   # view.html inlines three.js; the browser tests of view.html and
   # assembly.html run headless Debian chromium (skipped when it is missing).
   libjs-three chromium chromium-driver

@@ -99,7 +99,7 @@ int run_info(const InfoArgs& args) {
 }
 
 void add_info_options(CLI::App& sub, InfoArgs& args) {
-  sub.add_option("MESH", args.mesh, "Mesh file (.obj .off .ply .stl)")->required();
+  sub.add_option("MESH", args.mesh, "Mesh file (.obj .off .ply .stl .3mf)")->required();
 }
 
 const RegisterCommand kRegisterInfo(make_command<InfoArgs>(

@@ -75,7 +75,7 @@ int run_repair(const RepairArgs& args) {
 }
 
 void add_repair_options(CLI::App& sub, RepairArgs& args) {
-  sub.add_option("MESH", args.mesh, "Input mesh (.obj .off .ply .stl), any triangle soup")->required();
+  sub.add_option("MESH", args.mesh, "Input mesh (.obj .off .ply .stl .3mf), any triangle soup")->required();
   sub.add_option("-o,--output", args.output, "Output mesh file (.obj .off .ply .stl)")->required();
   sub.add_option("--max-deviation", args.options.max_deviation,
                  "Cap on the symmetric Hausdorff distance between the result and the input, fraction of the "

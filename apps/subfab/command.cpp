@@ -25,7 +25,7 @@ void add_common_options(CLI::App& sub, CommonOptions& options) {
 }
 
 void add_solid_input(CLI::App& sub, std::string& mesh) {
-  sub.add_option("MESH", mesh, "Input mesh (.obj .off .ply .stl), a closed solid")->required();
+  sub.add_option("MESH", mesh, "Input mesh (.obj .off .ply .stl .3mf), a closed solid")->required();
 }
 
 void add_output_folder(CLI::App& sub, std::string& outdir) {

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //! \file mesh_readers.h
 //! Private machinery shared by the format readers (read_obj.cpp, read_off.cpp,
-//! read_ply.cpp, read_stl.cpp) and read_mesh.cpp: error messages that name the
+//! read_ply.cpp, read_stl.cpp, read_3mf.cpp) and read_mesh.cpp: error messages that name the
 //! file and the line or byte offset, allocation-free number parsing, and the
 //! state the text parsers share (TextParser).
 //!
@@ -72,6 +72,8 @@ void read_obj(std::string_view data, const std::string& name, Mesh& mesh, ReadIn
 void read_off(std::string_view data, const std::string& name, Mesh& mesh, ReadInfo& info);
 void read_ply(std::string_view data, const std::string& name, Mesh& mesh, ReadInfo& info);
 void read_stl(std::string_view data, const std::string& name, Mesh& mesh, ReadInfo& info);
+//! 3MF (a zip of XML): every build item, transformed, in millimetres (read_3mf.cpp).
+void read_3mf(std::string_view data, const std::string& name, Mesh& mesh, ReadInfo& info);
 
 inline bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
 inline bool is_space_or_newline(char c) { return is_space(c) || c == '\n'; }

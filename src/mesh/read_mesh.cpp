@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //! read_mesh(): reads the whole file into memory, picks the format (extension,
 //! then content), runs the format reader (read_obj.cpp, read_off.cpp,
-//! read_ply.cpp, read_stl.cpp), then checks and cleans the result.
+//! read_ply.cpp, read_stl.cpp, read_3mf.cpp), then checks and cleans the result.
 #include "subfab/mesh/read_mesh.h"
 
 #include <algorithm>
@@ -27,6 +27,7 @@ std::string format_name(MeshFormat format) {
     case MeshFormat::Off: return "off";
     case MeshFormat::Ply: return "ply";
     case MeshFormat::Stl: return "stl";
+    case MeshFormat::ThreeMf: return "3mf";
   }
   return "unknown";
 }
@@ -206,13 +207,15 @@ MeshFormat choose_format(const std::filesystem::path& path, std::string_view dat
   if (ext == ".off") return MeshFormat::Off;
   if (ext == ".ply") return MeshFormat::Ply;
   if (ext == ".stl") return MeshFormat::Stl;
+  if (ext == ".3mf") return MeshFormat::ThreeMf;
   // Unknown extension: look at the content.
+  if (data.substr(0, 4) == std::string_view("PK\x03\x04", 4)) return MeshFormat::ThreeMf;  // a zip
   if (data.substr(0, 3) == "ply" && data.size() > 3 && (data[3] == '\n' || data[3] == '\r')) return MeshFormat::Ply;
   if (looks_like_off_keyword(first_token(data))) return MeshFormat::Off;
   if (looks_like_binary_stl(data) || starts_with_word(data, "solid")) return MeshFormat::Stl;
   if (looks_like_obj(data)) return MeshFormat::Obj;
   throw IoError(name + ": unknown mesh format: the extension '" + ext +
-                "' is not .obj, .off, .ply or .stl and the content looks like none of them");
+                "' is not .obj, .off, .ply, .stl or .3mf and the content looks like none of them");
 }
 
 }  // namespace
@@ -229,6 +232,7 @@ Mesh read_mesh(const std::filesystem::path& path, ReadInfo* info_out) {
     case MeshFormat::Off: detail::read_off(data, name, mesh, info); break;
     case MeshFormat::Ply: detail::read_ply(data, name, mesh, info); break;
     case MeshFormat::Stl: detail::read_stl(data, name, mesh, info); break;
+    case MeshFormat::ThreeMf: detail::read_3mf(data, name, mesh, info); break;
   }
   if (mesh.faces.empty())
     detail::throw_invalid(name, {},

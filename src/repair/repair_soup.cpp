@@ -99,13 +99,20 @@ MeshRepairStep remove_duplicate_faces(RepairSoup& soup) {
   return step;
 }
 
-std::vector<MeshRepairStep> orient_soup(RepairSoup& soup, RepairSurface& mesh) {
+std::vector<MeshRepairStep> orient_soup(RepairSoup& soup, RepairSurface& mesh, SoupState state) {
   MeshRepairStep split = new_step("split_non_manifold");
   MeshRepairStep orient = new_step("orient");
   const std::size_t n0 = soup.points.size();
   std::vector<std::vector<std::size_t>> polygons;
   polygons.reserve(soup.triangles.size());
   for (const auto& t : soup.triangles) polygons.push_back({t[0], t[1], t[2]});
+  if (state == SoupState::ManifoldConsistent) {
+    split.message = "no pinched vertex, no edge shared by more than two faces";
+    orient.message = "neighbouring faces already agree in orientation";
+    mesh.clear();
+    PMP::polygon_soup_to_polygon_mesh(soup.points, polygons, mesh);
+    return {split, orient};
+  }
   PMP::orient_polygon_soup(soup.points, polygons);
   // Copies made for non-manifold vertices are appended: map them back to
   // their original (same position) to tell a flip from a renumbering.

@@ -43,10 +43,17 @@ Vec3 face_centroid(const RepairSurface& mesh, RepairSurface::Face_index f);
 MeshRepairStep merge_duplicate_vertices(RepairSoup& soup);
 MeshRepairStep remove_repeated_corner_faces(RepairSoup& soup);
 MeshRepairStep remove_duplicate_faces(RepairSoup& soup);
+//! What is known of the soup before orient_soup().
+enum class SoupState {
+  Unknown,             // orient it (PMP::orient_polygon_soup)
+  ManifoldConsistent,  // the input's exact checks passed non_manifold_edges, non_manifold_vertices and
+                       // consistent_orientation, and steps 1-3 changed nothing: orienting would do nothing
+};
 //! Orients the soup consistently, splitting pinched vertices and edges of
 //! 3+ faces, and builds the halfedge mesh: the steps "split_non_manifold"
-//! and "orient".
-std::vector<MeshRepairStep> orient_soup(RepairSoup& soup, RepairSurface& mesh);
+//! and "orient". With SoupState::ManifoldConsistent only the mesh is built
+//! (orient_polygon_soup was 11 of 40 s on a 1.1M-face scan).
+std::vector<MeshRepairStep> orient_soup(RepairSoup& soup, RepairSurface& mesh, SoupState state);
 
 // Steps that close the surface (close_surface.cpp).
 MeshRepairStep stitch_borders(RepairSurface& mesh);
@@ -59,7 +66,11 @@ MeshRepairStep separate_pinches(RepairSurface& mesh, double distance);
 MeshRepairStep split_pinched_vertices(RepairSurface& mesh);
 
 // Steps that make it a solid (resolve_self_intersections.cpp).
-MeshRepairStep resolve_self_intersections(RepairSurface& mesh, std::size_t max_rounds);
+//! With `candidates`, the search for crossings is restricted to pairs of
+//! those faces: the caller knows that no two other faces can cross (see
+//! faces_that_may_cross in repair_mesh.cpp); null: every face.
+MeshRepairStep resolve_self_intersections(RepairSurface& mesh, std::size_t max_rounds,
+                                          const std::vector<RepairSurface::Face_index>* candidates = nullptr);
 MeshRepairStep orient_outward(RepairSurface& mesh);
 
 //! The mesh as a plain Mesh (vertices renumbered densely, in index order).

@@ -193,9 +193,14 @@ bool local_round(RepairSurface& mesh) {
 
 }  // namespace
 
-MeshRepairStep resolve_self_intersections(RepairSurface& mesh, std::size_t max_rounds) {
+MeshRepairStep resolve_self_intersections(RepairSurface& mesh, std::size_t max_rounds,
+                                          const std::vector<Face>* candidates) {
   MeshRepairStep step = new_step("self_intersections");
-  const auto pairs = intersecting_pairs(mesh);
+  std::vector<std::pair<Face, Face>> pairs;
+  if (candidates)
+    PMP::self_intersections<CGAL::Sequential_tag>(*candidates, mesh, std::back_inserter(pairs));
+  else
+    pairs = intersecting_pairs(mesh);
   step.num_found = pairs.size();
   if (pairs.empty()) {
     step.message = "no two faces intersect";

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //! \file read_mesh.h
-//! Reading triangle meshes from OBJ, OFF, PLY and STL files.
+//! Reading triangle meshes from OBJ, OFF, PLY, STL and 3MF files.
 #pragma once
 
 #include <cstddef>
@@ -12,9 +12,9 @@
 
 namespace subfab {
 
-enum class MeshFormat { Obj, Off, Ply, Stl };
+enum class MeshFormat { Obj, Off, Ply, Stl, ThreeMf };
 
-//! "obj", "off", "ply", "stl".
+//! "obj", "off", "ply", "stl", "3mf".
 std::string format_name(MeshFormat format);
 
 //! What the reader did besides reading (for `subfab info` and warnings).
@@ -30,7 +30,8 @@ struct ReadInfo {
 
 //! Reads a mesh; the format is chosen by the file extension (case-insensitive)
 //! and, when the extension is unknown, by the file's content.
-//! Polygons are triangulated, unreferenced vertices dropped, STL corners welded.
+//! Polygons are triangulated, unreferenced vertices dropped, STL corners welded;
+//! a 3MF file gives all its build items (transformed) as one mesh, in millimetres.
 //! \throw IoError when the file cannot be opened or is not a well-formed file
 //!        of its format (message: file, line or byte offset, what is wrong).
 //! \throw InvalidMeshError when the file is well formed but holds no usable
