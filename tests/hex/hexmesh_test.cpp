@@ -98,14 +98,48 @@ TEST(Hexmesh, YJunctionIsConformingWithAClosedQuadBoundary) {
   EXPECT_LT(r.mean_distance / r.diagonal, 0.01);
 }
 
-// Known failure (issue 14): the three arcs of a planar Y leave the branching
-// cube 30 degrees off its face normals, and the padding there keeps a few
-// elements at a scaled Jacobian of about -0.005 (9 of 52 on the coarse mesh).
-// Enable once junctions are built for it.
-TEST(Hexmesh, DISABLED_YJunctionHasNoInvertedElement) {
+// Regression (issue 14): the arms of test::y_skeleton() end on the surface,
+// at the tips; the terminal cubes poked out of the surface and their padding
+// was inside out (min scaled Jacobian -0.005 after optimisation, 15 of 52
+// coarse hexahedra under .05). Terminal nodes are now pulled in along their
+// arc and the pillow rays start at the cube centre.
+TEST(Hexmesh, YJunctionHasNoInvertedElement) {
   const HexMeshResult r = y_result();
-  EXPECT_GT(r.min_sj, 0.0);
+  EXPECT_GT(r.min_sj, 0.2);
   EXPECT_EQ(r.histogram[0], 0u);
+  EXPECT_EQ(r.optimize.num_inverted, 0u);
+}
+
+// Regression (issue 14): a straight skeleton whose end nodes are the poles
+// of the capsule (on the surface) gave 21 inverted hexahedra.
+TEST(Hexmesh, SkeletonEndingOnTheSurfaceGivesNoInvertedElement) {
+  const Mesh m = test::capsule(1.0, 3.0, 32, 8, 24);
+  const Skeleton s = test::line_skeleton(9, 4.0, 1.0);  // from pole to pole
+  HexMeshOptions options;
+  options.subdivisions = 1;
+  const HexMeshResult r = hexmesh(m, &s, options);
+  EXPECT_TRUE(r.check.valid());
+  EXPECT_EQ(r.histogram[0], 0u);
+  EXPECT_GT(r.min_sj, 0.2);
+  // the terminal cubes moved in, off the surface
+  for (const Vec3& p : r.structure_info.vertex_anchor) EXPECT_LT(std::abs(p.x()), 3.5);
+}
+
+// Regression (issue 14, rocker arm): a skeleton running close to the
+// surface (here 0.1 from it, radius 1) gave cubes and sections far smaller
+// than the part and 3 inverted hexahedra; its nodes are now moved onto the
+// middle of the part first.
+TEST(Hexmesh, SkeletonNearTheSurfaceIsCentredFirst) {
+  const Mesh m = test::capsule(1.0, 3.0, 32, 8, 24);
+  Skeleton s = test::line_skeleton(7, 3.0, 1.0);
+  for (Vec3& p : s.points) p.y() = 0.9;
+  HexMeshOptions options;
+  options.subdivisions = 1;
+  const HexMeshResult r = hexmesh(m, &s, options);
+  EXPECT_TRUE(r.check.valid());
+  EXPECT_EQ(r.histogram[0], 0u);
+  EXPECT_GT(r.min_sj, 0.3);
+  for (const Vec3& p : r.structure_info.vertex_anchor) EXPECT_LT(std::abs(p.y()), 0.2);
 }
 
 TEST(Hexmesh, SameOutputWhateverTheThreads) {
