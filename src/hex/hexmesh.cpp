@@ -22,6 +22,7 @@ std::size_t idx(int v) { return static_cast<std::size_t>(v); }
 constexpr double kMaxCoreFraction = 0.6;  // see place_pillow()
 
 
+
 class Timer {
  public:
   explicit Timer(std::vector<std::pair<std::string, double>>& out) : out_(out) {}
@@ -90,15 +91,18 @@ void centre_skeleton_nodes(Skeleton& s, const detail::SurfaceProjector& projecto
     Vec3 p = start;
     double d = depth(projector, p);
     if (d >= 0.5 * r) return;
+    // the step and the reach: the radius, or twice the way back in for a
+    // node outside (its radius is often that distance, not the part's)
+    const double scale = std::max(r, -2 * d);
     for (int iter = 0; iter < 64; ++iter) {
       Vec3 dir = p - projector.closest_point(p);
       if (!(dir.norm() > 0)) break;
       dir = (d < 0 ? -dir : dir).normalized();
       bool improved = false;
-      for (double step = 0.5 * r; step > r / 20; step *= 0.5) {
+      for (double step = 0.5 * scale; step > scale / 20; step *= 0.5) {
         const Vec3 q = p + step * dir;
-        if ((q - start).norm() > r) continue;
-        if (const double dq = depth(projector, q); dq > d + 1e-9 * r) {
+        if ((q - start).norm() > scale) continue;
+        if (const double dq = depth(projector, q); dq > d + 1e-9 * scale) {
           p = q, d = dq, improved = true;
           break;
         }
@@ -134,7 +138,7 @@ void pull_in_terminal_nodes(Skeleton& s, const detail::SurfaceProjector& project
       if (d >= want) break;
     }
     s.points[v] = best;
-    s.radii[v] = std::min(s.radii[v], best_d);
+    s.radii[v] = std::min(want, best_d);  // its old radius was capped by its old depth
   }
 }
 

@@ -5,17 +5,25 @@
 
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
 #include "geometry/exact_mesh.h"
 
 #include "subfab/core/parallel.h"
+#include "subfab/hex/scaled_jacobian.h"
 #include "support/hex_test_shapes.h"
 #include "support/test_shapes.h"
 
 namespace subfab {
 namespace {
+
+//! Worst scaled Jacobian of the tubular structure (before padding).
+double min_of_structure(const HexMeshResult& r) {
+  const auto sj = scaled_jacobians(r.structure);
+  return *std::min_element(sj.begin(), sj.end());
+}
 
 TEST(Hexmesh, CapsuleIsAValidMeshOnItsSurface) {
   const Mesh m = test::capsule(1.0, 3.0, 32, 8, 24);
@@ -80,7 +88,9 @@ Mesh y_solid(double length = 4.0, double r = 0.5) {
 }
 
 HexMeshResult y_result() {
-  const Mesh m = y_solid();
+  // built once: a second corefinement in the same process gave a different
+  // solid (the origin outside it, 0.43 from a leftover inner face)
+  static const Mesh m = y_solid();
   const Skeleton s = test::y_skeleton(6, 4.0, 0.5);
   HexMeshOptions options;
   options.subdivisions = 1;
@@ -140,6 +150,23 @@ TEST(Hexmesh, SkeletonNearTheSurfaceIsCentredFirst) {
   EXPECT_EQ(r.histogram[0], 0u);
   EXPECT_GT(r.min_sj, 0.3);
   for (const Vec3& p : r.structure_info.vertex_anchor) EXPECT_LT(std::abs(p.y()), 0.2);
+}
+
+// Regression (issue 14, elephant): terminal nodes outside the surface (0.6
+// beyond the poles, radius 0.6, as the skeleton's clean-up leaves a tip) were
+// centred onto the surface, capped to a zero radius and gave a cube of size
+// 0 (main: 62 inverted hexahedra).
+TEST(Hexmesh, TerminalNodesOutsideTheSurfaceGiveFullSizeCubes) {
+  const Mesh m = test::capsule(1.0, 3.0, 32, 8, 24);
+  Skeleton s = test::line_skeleton(9, 4.6, 1.0);
+  s.radii.front() = s.radii.back() = 0.6;
+  HexMeshOptions options;
+  options.subdivisions = 1;
+  const HexMeshResult r = hexmesh(m, &s, options);
+  EXPECT_TRUE(r.check.valid());
+  EXPECT_EQ(r.histogram[0], 0u);
+  EXPECT_GT(r.min_sj, 0.3);
+  EXPECT_GT(min_of_structure(r), 0.3);
 }
 
 TEST(Hexmesh, SameOutputWhateverTheThreads) {
