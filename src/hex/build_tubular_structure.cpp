@@ -398,7 +398,16 @@ TubularStructure build_tubular_structure(const Skeleton& skeleton, const Tubular
     std::size_t lo = 1, hi = nodes.size() - 2;  // inner nodes lo..hi
     while (lo <= hi && (skeleton.points[idx(nodes[lo])] - q0).dot(n0) < need * c0.half) ++lo;
     while (hi >= lo && (skeleton.points[idx(nodes[hi])] - q1).dot(n1) < need * c1.half) --hi;
-    if (lo > hi) lo = hi = nodes.size() / 2;  // keep the middle node at least
+    if (lo > hi) {
+      // no node clear of both cubes: keep the middle one if it is at least in
+      // front of both faces (always on a loop back to the same cube), else
+      // join the two faces by one hexahedron (a section behind a face turns
+      // its layer inside out: bob's short tail)
+      const std::size_t mid = nodes.size() / 2;
+      const Vec3& p = skeleton.points[idx(nodes[mid])];
+      const bool in_front = (p - q0).dot(n0) > 0 && (p - q1).dot(n1) > 0;
+      if (in_front || nodes.front() == nodes.back()) lo = hi = mid;
+    }
     for (std::size_t i = lo; i <= hi && i + 1 < nodes.size() && i >= 1; ++i) {
       centres.push_back(skeleton.points[idx(nodes[i])]);
       diag.push_back(options.core_scale * skeleton.radii[idx(nodes[i])] * std::sqrt(2.0));

@@ -21,6 +21,8 @@ std::size_t idx(int v) { return static_cast<std::size_t>(v); }
 
 constexpr double kMaxCoreFraction = 0.6;  // see place_pillow()
 
+
+
 class Timer {
  public:
   explicit Timer(std::vector<std::pair<std::string, double>>& out) : out_(out) {}
@@ -37,9 +39,12 @@ class Timer {
 
 //! Places the pillow's outer vertices on the surface: a ray from the
 //! skeleton point each core vertex belongs to (its cube's or section's
-//! centre) through the vertex, first hit beyond the vertex. Rays from one
-//! centre cannot cross, so a cube or a section does not fold. The closest
-//! point is the fallback (vertex outside, or no hit).
+//! centre) through the vertex, first hit. Rays from one centre cannot cross,
+//! so a cube or a section does not fold. The ray starts at the centre, not at
+//! the vertex, so a core vertex that pokes out of the surface (a cube corner
+//! at a rounded tip) is pulled back in like the others instead of leaving its
+//! padding hexahedra inside out. The closest point is the fallback (centre
+//! outside, no hit, or a hit across a gap).
 void place_pillow(HexMesh& mesh, const std::vector<Vec3>& anchors, const std::vector<int>& outer,
                   const detail::SurfaceProjector& projector) {
   std::vector<Vec3> inner(mesh.vertices.size());
@@ -49,9 +54,9 @@ void place_pillow(HexMesh& mesh, const std::vector<Vec3>& anchors, const std::ve
     Vec3 target = projector.closest_point(origin);
     inner[v] = origin;
     const Vec3 dir = origin - anchors[v];
-    if (dir.norm() > 0 && projector.inside(origin))
-      if (const auto hit = projector.first_hit(origin, dir.normalized()))
-        if ((*hit - origin).norm() <= 3 * (target - origin).norm()) {  // not across a gap
+    if (dir.norm() > 0 && projector.inside(anchors[v]))
+      if (const auto hit = projector.first_hit(anchors[v], dir.normalized()))
+        if ((*hit - origin).norm() <= 3 * (target - origin).norm() + dir.norm()) {  // not across a gap
           target = *hit;
           // keep the padding layer thick: the core vertex at most
           // kMaxCoreFraction of the way from its centre to the surface
@@ -62,6 +67,79 @@ void place_pillow(HexMesh& mesh, const std::vector<Vec3>& anchors, const std::ve
   }, 256);
   for (std::size_t v = 0; v < outer.size(); ++v)
     if (outer[v] >= 0) mesh.vertices[v] = inner[v];
+}
+
+//! Signed distance to the surface: positive inside.
+double depth(const detail::SurfaceProjector& projector, const Vec3& p) {
+  const double d = (projector.closest_point(p) - p).norm();
+  return projector.inside(p) ? d : -d;
+}
+
+//! The curve-skeleton can run close to the surface, or out of it, where the
+//! shape is flat (rocker arm: a branching node 0.004 from the surface with a
+//! radius of 0.11, so its cube was 50 times smaller than its tubes). Moves
+//! each node whose depth (distance to the surface, negative outside) is
+//! under half its radius away from its closest surface point (towards it
+//! when outside), in steps of half to a sixteenth of its radius, while the
+//! depth grows, and at most its radius in all: onto the middle of the part
+//! it is in. Nodes are independent: parallel and deterministic.
+void centre_skeleton_nodes(Skeleton& s, const detail::SurfaceProjector& projector) {
+  std::vector<Vec3> moved = s.points;
+  parallel_for(0, s.num_nodes(), [&](std::size_t v) {
+    const double r = s.radii[v];
+    const Vec3 start = s.points[v];
+    Vec3 p = start;
+    double d = depth(projector, p);
+    if (d >= 0.5 * r) return;
+    // the step and the reach: the radius, or twice the way back in for a
+    // node outside (its radius is often that distance, not the part's)
+    const double scale = std::max(r, -2 * d);
+    for (int iter = 0; iter < 64; ++iter) {
+      Vec3 dir = p - projector.closest_point(p);
+      if (!(dir.norm() > 0)) break;
+      dir = (d < 0 ? -dir : dir).normalized();
+      bool improved = false;
+      for (double step = 0.5 * scale; step > scale / 20; step *= 0.5) {
+        const Vec3 q = p + step * dir;
+        if ((q - start).norm() > scale) continue;
+        if (const double dq = depth(projector, q); dq > d + 1e-9 * scale) {
+          p = q, d = dq, improved = true;
+          break;
+        }
+      }
+      if (!improved) break;
+    }
+    moved[v] = p;
+  }, 8);
+  s.points = std::move(moved);
+}
+
+//! A terminal node at (or near) the end of its limb leaves its cube no room:
+//! the cube pokes out of the surface and the padding around it folds (the
+//! curve-skeleton of a rounded tip ends on the surface). Moves each terminal
+//! node towards its neighbour, up to half way, to the first of 16 evenly
+//! spaced points whose distance to the surface reaches the neighbour's
+//! (capped) radius, or the farthest one from the surface if none does. The
+//! radii must already be capped by the distance to the surface.
+void pull_in_terminal_nodes(Skeleton& s, const detail::SurfaceProjector& projector) {
+  constexpr int kSamples = 16;
+  for (std::size_t v = 0; v < s.num_nodes(); ++v) {
+    if (s.neighbors[v].size() != 1) continue;
+    const std::size_t w = idx(s.neighbors[v][0]);
+    const Vec3 from = s.points[v], to = s.points[w];
+    const double want = s.radii[w];
+    Vec3 best = from;
+    double best_d = projector.inside(from) ? (projector.closest_point(from) - from).norm() : 0.0;
+    if (best_d >= want) continue;
+    for (int i = 1; i <= kSamples; ++i) {
+      const Vec3 p = from + (0.5 * i / kSamples) * (to - from);
+      const double d = projector.inside(p) ? (projector.closest_point(p) - p).norm() : 0.0;
+      if (d > best_d) best = p, best_d = d;
+      if (d >= want) break;
+    }
+    s.points[v] = best;
+    s.radii[v] = std::min(want, best_d);  // its old radius was capped by its old depth
+  }
 }
 
 //! Where each boundary vertex goes on the surface: along the pillow edge
@@ -125,10 +203,12 @@ HexMeshResult hexmesh(const Mesh& surface, const Skeleton* skeleton, const HexMe
     // the core is sized from the maximal spheres: never larger than the
     // distance from the node to the surface
     Skeleton sized = r.resampled;
+    centre_skeleton_nodes(sized, projector);
     for (std::size_t v = 0; v < sized.num_nodes(); ++v) {
       const double d = (projector.closest_point(sized.points[v]) - sized.points[v]).norm();
       if (d > 0) sized.radii[v] = std::min(sized.radii[v], d);
     }
+    pull_in_terminal_nodes(sized, projector);
     r.structure_info = build_tubular_structure(sized, options.tubular);
     r.structure = r.structure_info.mesh;
   }

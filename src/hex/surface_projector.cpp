@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "hex/surface_projector.h"
 
+#include <array>
+
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
@@ -65,10 +67,17 @@ std::optional<Vec3> SurfaceProjector::first_hit(const Vec3& origin, const Vec3& 
 }
 
 bool SurfaceProjector::inside(const Vec3& p) const {
-  // parity of the crossings of a fixed, generic ray
-  const Vec3 dir(0.5773502691896258, 0.5773502691896257, 0.5773502691896259);
-  const K::Ray_3 ray(to_point(p), K::Vector_3(dir.x() + 1e-3, dir.y() - 2e-3, dir.z()));
-  return impl_->tree.number_of_intersected_primitives(ray) % 2 == 1;
+  // majority of the crossing parities of three fixed, generic rays: one ray
+  // through an edge or a vertex of the surface counts it twice or not at all
+  // (the centre of the Y test: a symmetric union of three capsules)
+  static const std::array<Vec3, 3> dirs{Vec3(0.5783502691896258, 0.5753502691896257, 0.5773502691896259),
+                                        Vec3(-0.6123, 0.2871, 0.7367), Vec3(0.3217, -0.8419, -0.4331)};
+  int votes = 0;
+  for (const Vec3& d : dirs) {
+    const K::Ray_3 ray(to_point(p), K::Vector_3(d.x(), d.y(), d.z()));
+    votes += impl_->tree.number_of_intersected_primitives(ray) % 2 == 1;
+  }
+  return votes >= 2;
 }
 
 }  // namespace subfab::detail

@@ -5,17 +5,37 @@
 
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
 #include "geometry/exact_mesh.h"
 
 #include "subfab/core/parallel.h"
+#include "subfab/hex/scaled_jacobian.h"
 #include "support/hex_test_shapes.h"
 #include "support/test_shapes.h"
 
 namespace subfab {
 namespace {
+
+//! Worst scaled Jacobian of the tubular structure (before padding).
+double min_of_structure(const HexMeshResult& r) {
+  const auto sj = scaled_jacobians(r.structure);
+  return *std::min_element(sj.begin(), sj.end());
+}
+
+//! The test capsule meshed with skeleton `s` (one split); checks that the
+//! result is a valid mesh with no inverted element.
+HexMeshResult capsule_with(const Skeleton& s) {
+  const Mesh m = test::capsule(1.0, 3.0, 32, 8, 24);
+  HexMeshOptions options;
+  options.subdivisions = 1;
+  HexMeshResult r = hexmesh(m, &s, options);
+  EXPECT_TRUE(r.check.valid());
+  EXPECT_EQ(r.histogram[0], 0u);
+  return r;
+}
 
 TEST(Hexmesh, CapsuleIsAValidMeshOnItsSurface) {
   const Mesh m = test::capsule(1.0, 3.0, 32, 8, 24);
@@ -74,13 +94,19 @@ Mesh y_solid(double length = 4.0, double r = 0.5) {
     }
     detail::ExactMesh e = detail::to_exact(c);
     if (b == 0) solid = e;
-    else CGAL::Polygon_mesh_processing::corefine_and_compute_union(solid, e, solid);
+    else {
+      detail::ExactMesh out;  // not in place (in place, the result depended on earlier tests)
+      CGAL::Polygon_mesh_processing::corefine_and_compute_union(solid, e, out);
+      solid = std::move(out);
+    }
   }
   return detail::to_double(solid);
 }
 
 HexMeshResult y_result() {
-  const Mesh m = y_solid();
+  // built once (an in-place union gave a solid that depended on the tests
+  // run before: the origin outside it, 0.43 from a leftover inner face)
+  static const Mesh m = y_solid();
   const Skeleton s = test::y_skeleton(6, 4.0, 0.5);
   HexMeshOptions options;
   options.subdivisions = 1;
@@ -98,14 +124,50 @@ TEST(Hexmesh, YJunctionIsConformingWithAClosedQuadBoundary) {
   EXPECT_LT(r.mean_distance / r.diagonal, 0.01);
 }
 
-// Known failure (issue 14): the three arcs of a planar Y leave the branching
-// cube 30 degrees off its face normals, and the padding there keeps a few
-// elements at a scaled Jacobian of about -0.005 (9 of 52 on the coarse mesh).
-// Enable once junctions are built for it.
-TEST(Hexmesh, DISABLED_YJunctionHasNoInvertedElement) {
+// Regression (issue 14): the arms of test::y_skeleton() end on the surface,
+// at the tips; the terminal cubes poked out of the surface and their padding
+// was inside out (min scaled Jacobian -0.005 after optimisation, 15 of 52
+// coarse hexahedra under .05). Terminal nodes are now pulled in along their
+// arc and the pillow rays start at the cube centre.
+TEST(Hexmesh, YJunctionHasNoInvertedElement) {
   const HexMeshResult r = y_result();
-  EXPECT_GT(r.min_sj, 0.0);
+  EXPECT_GT(r.min_sj, 0.2);
   EXPECT_EQ(r.histogram[0], 0u);
+  EXPECT_EQ(r.optimize.num_inverted, 0u);
+}
+
+// Regression (issue 14): a straight skeleton whose end nodes are the poles
+// of the capsule (on the surface) gave 21 inverted hexahedra.
+TEST(Hexmesh, SkeletonEndingOnTheSurfaceGivesNoInvertedElement) {
+  const Skeleton s = test::line_skeleton(9, 4.0, 1.0);  // from pole to pole
+  const HexMeshResult r = capsule_with(s);
+  EXPECT_GT(r.min_sj, 0.2);
+  // the terminal cubes moved in, off the surface
+  for (const Vec3& p : r.structure_info.vertex_anchor) EXPECT_LT(std::abs(p.x()), 3.5);
+}
+
+// Regression (issue 14, rocker arm): a skeleton running close to the
+// surface (here 0.1 from it, radius 1) gave cubes and sections far smaller
+// than the part and 3 inverted hexahedra; its nodes are now moved onto the
+// middle of the part first.
+TEST(Hexmesh, SkeletonNearTheSurfaceIsCentredFirst) {
+  Skeleton s = test::line_skeleton(7, 3.0, 1.0);
+  for (Vec3& p : s.points) p.y() = 0.9;
+  const HexMeshResult r = capsule_with(s);
+  EXPECT_GT(r.min_sj, 0.3);
+  for (const Vec3& p : r.structure_info.vertex_anchor) EXPECT_LT(std::abs(p.y()), 0.2);
+}
+
+// Regression (issue 14, elephant): terminal nodes outside the surface (0.6
+// beyond the poles, radius 0.6, as the skeleton's clean-up leaves a tip) were
+// centred onto the surface, capped to a zero radius and gave a cube of size
+// 0 (main: 62 inverted hexahedra).
+TEST(Hexmesh, TerminalNodesOutsideTheSurfaceGiveFullSizeCubes) {
+  Skeleton s = test::line_skeleton(9, 4.6, 1.0);
+  s.radii.front() = s.radii.back() = 0.6;
+  const HexMeshResult r = capsule_with(s);
+  EXPECT_GT(r.min_sj, 0.3);
+  EXPECT_GT(min_of_structure(r), 0.3);
 }
 
 TEST(Hexmesh, SameOutputWhateverTheThreads) {

@@ -4,7 +4,12 @@
 //! the whole pipeline:
 //!   1. skeleton: the one given, or compute_skeleton() (flow + clean-up);
 //!   2. resample_skeleton() (D.4);
-//!   3. build_tubular_structure() (D.3): the conforming core of cubes and tubes;
+//!   3. nodes off the middle of the shape (depth under half their radius, or
+//!      outside) are moved away from the surface while their depth grows, at
+//!      most their radius (twice their depth when outside); radii are capped
+//!      by the depth; terminal nodes move towards their neighbour (at most
+//!      half way) until their depth reaches its radius, so that no cube pokes
+//!      out; then build_tubular_structure() (D.3): the conforming core;
 //!   4. pillow_hex_mesh() (D.6): one padding layer whose outer vertices are
 //!      placed on the surface by casting a ray from each core vertex's centre
 //!      (its cube's or section's skeleton point) through the vertex; the core

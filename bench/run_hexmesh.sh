@@ -1,0 +1,28 @@
+#!/bin/sh
+# Hexahedral meshing table of bench/RESULTS.md ("Hexahedral meshing"):
+# one model at a time, default options. Usage: bench/run_hexmesh.sh [OUT] [MODEL...]
+set -e
+out=${1:-/tmp/hexbench}
+shift 2>/dev/null || true
+models=${*:-"cactus.off fertility.off humanoid.off bob.obj spot.obj rocker_arm.obj elephant.obj"}
+for m in $models; do
+  name=${m%.*}
+  start=$(date +%s.%N)
+  code=0
+  build/subfab hexmesh ../shared/models/$m -o $out/$name --json --quiet --no-view > $out/$name.stdout 2> $out/$name.stderr || code=$?
+  end=$(date +%s.%N)
+  python3 - "$out/$name/hexmesh.json" "$name" "$code" "$start" "$end" <<'PY'
+import json, sys
+path, name, code, start, end = sys.argv[1:]
+try:
+    j = json.load(open(path))
+except Exception as e:
+    print(f"{name}: no json ({e}), exit {code}"); sys.exit()
+sj = j["scaled_jacobian"]
+print(f"{name}: exit {code}, wall {float(end) - float(start):.1f} s, tris {j['input_triangles']}, "
+      f"skeleton nodes {j['skeleton_nodes']}, cubes/tubes {j['cubes']}/{j['tubes']}, hexahedra {j['hexahedra']}, "
+      f"SJ avg/min {sj['avg']:.3f}/{sj['min']:.4f}, inverted {j['inverted']}, "
+      f"mean/max dist {j['mean_distance_fraction']:.2e}/{j['max_distance_fraction']:.2e}, "
+      f"total {j['seconds_total']:.1f} s, optimise {j['seconds']['subdivide + project + optimise']:.1f} s")
+PY
+done
