@@ -1,15 +1,14 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "hex/surface_projector.h"
 
-#include <array>
-
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Simple_cartesian.h>
-#include <CGAL/Side_of_triangle_mesh.h>
 
 #include <vector>
+
+#include "geometry/solid_index.h"
 
 namespace subfab::detail {
 
@@ -27,11 +26,13 @@ Vec3 to_vec(const Point& p) { return {p.x(), p.y(), p.z()}; }
 }  // namespace
 
 struct SurfaceProjector::Impl {
+  explicit Impl(const Mesh& surface) : solid(surface) {}
   std::vector<Triangle3> triangles;
   Tree tree;
+  SolidIndex solid;  // exact inside/outside
 };
 
-SurfaceProjector::SurfaceProjector(const Mesh& surface) : impl_(std::make_unique<Impl>()) {
+SurfaceProjector::SurfaceProjector(const Mesh& surface) : impl_(std::make_unique<Impl>(surface)) {
   for (const Triangle& t : surface.faces)
     impl_->triangles.emplace_back(to_point(surface.vertices[static_cast<std::size_t>(t[0])]),
                                   to_point(surface.vertices[static_cast<std::size_t>(t[1])]),
@@ -67,17 +68,10 @@ std::optional<Vec3> SurfaceProjector::first_hit(const Vec3& origin, const Vec3& 
 }
 
 bool SurfaceProjector::inside(const Vec3& p) const {
-  // majority of the crossing parities of three fixed, generic rays: one ray
-  // through an edge or a vertex of the surface counts it twice or not at all
-  // (the centre of the Y test: a symmetric union of three capsules)
-  static const std::array<Vec3, 3> dirs{Vec3(0.5783502691896258, 0.5753502691896257, 0.5773502691896259),
-                                        Vec3(-0.6123, 0.2871, 0.7367), Vec3(0.3217, -0.8419, -0.4331)};
-  int votes = 0;
-  for (const Vec3& d : dirs) {
-    const K::Ray_3 ray(to_point(p), K::Vector_3(d.x(), d.y(), d.z()));
-    votes += impl_->tree.number_of_intersected_primitives(ray) % 2 == 1;
-  }
-  return votes >= 2;
+  // exact, with a definite answer on the surface (simulation of simplicity;
+  // a ray through an edge or a vertex, e.g. at the centre of the symmetric Y
+  // test shape, is no special case)
+  return impl_->solid.is_inside(p);
 }
 
 }  // namespace subfab::detail

@@ -23,7 +23,8 @@ class SurfaceProjector {
   //! The first point where the ray from `origin` along `direction` meets the
   //! surface, if any.
   std::optional<Vec3> first_hit(const Vec3& origin, const Vec3& direction) const;
-  //! Whether p is inside the closed surface (majority of three ray parities).
+  //! Whether p is inside the closed surface: exact (SolidIndex::is_inside,
+  //! which needs a closed, oriented, self-intersection-free surface).
   bool inside(const Vec3& p) const;
 
  private:
