@@ -118,12 +118,17 @@ MillToleranceResult mill_within_tolerance(const Mesh& solid, std::vector<Block> 
       for (const BoundingBox& b : *fill[i]) tasks.emplace_back(i, b);
   }
   std::vector<FillDeviation> measured(tasks.size());
+  std::atomic<std::size_t> measured_done{0};
+  if (progress)
+    progress->info("measuring the deviation in " + std::to_string(tasks.size()) + " region(s) of " +
+                   std::to_string(all_filled.size()) + " filled block(s)");
   parallel_for(0, tasks.size(), [&](std::size_t t) {
     const auto& [i, core] = tasks[t];
     std::vector<const Mesh*> others;
     for (const Mesh* m : all_filled)
       if (m != &blocks[i].mesh) others.push_back(m);
     measured[t] = core ? meter.measure_fill(blocks[i].mesh, others, {*core}, fo) : meter.measure(blocks[i].mesh, others, fo);
+    if (progress) progress->update(n + (n * ++measured_done) / std::max<std::size_t>(tasks.size(), 1), 2 * n);
   });
   std::vector<FillDeviation> deviation(n);
   for (std::size_t i = 0; i < n; ++i)
@@ -148,7 +153,6 @@ MillToleranceResult mill_within_tolerance(const Mesh& solid, std::vector<Block> 
       else
         r.deviation[i] = dev.bound();
     }
-    if (progress) progress->update(++done, 2 * n);
   }
   for (std::size_t i = 0; i < n; ++i)
     if (r.failures[i].empty()) r.max_deviation = std::max(r.max_deviation, r.deviation[i]);
