@@ -127,7 +127,12 @@ std::optional<Candidate> evaluate(std::size_t i, std::size_t j, const State& s, 
     const Mesh& m = milled.mesh;
     if (!check_closed_solid(m).ok() || !is_height_field(m, d)) continue;
     // The deviation first (it rejects most), then collisions (exact booleans).
-    const FillDeviation dev = meter.measure(m, others, {.reach = o.tolerance, .error = error, .max_faces = o.max_region_faces});
+    // Where neither block sticks out, the union lies in the solid and only
+    // its fill can deviate (measure_fill(), local); else near the whole union.
+    const FillDeviationOptions fo{.reach = o.tolerance, .error = error, .max_faces = o.max_region_faces};
+    std::optional<std::vector<BoundingBox>> fill;
+    if (!s.filled[i] && !s.filled[j]) fill = fill_columns(*u, m, axis);
+    const FillDeviation dev = fill ? meter.measure_fill(m, others, *fill, fo) : meter.measure(m, others, fo);
     if (!dev.failure.empty() || dev.bound() > o.tolerance) continue;
     const BoundingBox mbox = bounding_box(m);
     const double volume = signed_volume(m);

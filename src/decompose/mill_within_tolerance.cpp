@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -46,8 +47,9 @@ MillToleranceResult mill_within_tolerance(const Mesh& solid, std::vector<Block> 
   r.failures.assign(n, std::string());
   r.deviation.assign(n, 0.0);
 
-  // 1. milled shapes
+  // 1. milled shapes, and the boxes that cover what they add (fill_columns())
   std::atomic<std::size_t> done{0};
+  std::vector<std::optional<std::vector<BoundingBox>>> fill(n);
   parallel_for(0, n, [&](std::size_t i) {
     const Vec3 d = axis_direction(blocks[i].axis);
     try {
@@ -56,6 +58,7 @@ MillToleranceResult mill_within_tolerance(const Mesh& solid, std::vector<Block> 
         if (!check_closed_solid(m.mesh).ok() || !is_height_field(m.mesh, d))
           r.failures[i] = "its milled shape is not a closed 2-manifold height field";
         else {
+          fill[i] = fill_columns(blocks[i].mesh, m.mesh, blocks[i].axis);
           blocks[i].mesh = std::move(m.mesh);
           r.filled[i] = 1;
         }
@@ -96,19 +99,52 @@ MillToleranceResult mill_within_tolerance(const Mesh& solid, std::vector<Block> 
         r.failures[a] = "its milled shape overlaps block " + std::to_string(b + 1);
   }
 
-  // 3. the deviation near every filled block, the others that stick out included
+  // 3. the deviation near every filled block, the others that stick out
+  //    included: in the boxes that cover its fill (one task per box, all
+  //    blocks' boxes in one parallel loop: a big block has many), or near
+  //    the whole block when fill_columns() could not bound the fill.
   const FillDeviationMeter meter(solid);
   std::vector<const Mesh*> all_filled;
   for (std::size_t i = 0; i < n; ++i)
     if (r.filled[i]) all_filled.push_back(&blocks[i].mesh);
   const double error = options.error_fraction * options.tolerance;
-  parallel_for(0, n, [&](std::size_t i) {
+  const FillDeviationOptions fo{.reach = options.tolerance, .error = error, .max_faces = options.max_region_faces};
+  std::vector<std::pair<std::size_t, std::optional<BoundingBox>>> tasks;  // (block, box; none = whole block)
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!r.filled[i] || !r.failures[i].empty()) continue;
+    if (!fill[i])
+      tasks.emplace_back(i, std::nullopt);
+    else
+      for (const BoundingBox& b : *fill[i]) tasks.emplace_back(i, b);
+  }
+  std::vector<FillDeviation> measured(tasks.size());
+  std::atomic<std::size_t> measured_done{0};
+  if (progress)
+    progress->info("measuring the deviation in " + std::to_string(tasks.size()) + " region(s) of " +
+                   std::to_string(all_filled.size()) + " filled block(s)");
+  parallel_for(0, tasks.size(), [&](std::size_t t) {
+    const auto& [i, core] = tasks[t];
+    std::vector<const Mesh*> others;
+    for (const Mesh* m : all_filled)
+      if (m != &blocks[i].mesh) others.push_back(m);
+    measured[t] = core ? meter.measure_fill(blocks[i].mesh, others, {*core}, fo) : meter.measure(blocks[i].mesh, others, fo);
+    if (progress) progress->update(n + (n * ++measured_done) / std::max<std::size_t>(tasks.size(), 1), 2 * n);
+  });
+  std::vector<FillDeviation> deviation(n);
+  for (std::size_t i = 0; i < n; ++i)
+    if (fill[i]) deviation[i] = meter.measure_fill(blocks[i].mesh, {}, {}, fo);  // no box: 0 + the error bound
+  for (std::size_t t = 0; t < tasks.size(); ++t) {
+    FillDeviation& d = deviation[tasks[t].first];
+    const FillDeviation& m = measured[t];
+    if (!d.failure.empty()) continue;
+    d.failure = m.failure;
+    d.to_input = std::max(d.to_input, m.to_input);
+    d.from_input = std::max(d.from_input, m.from_input);
+    d.error = std::max(d.error, m.error);
+  }
+  for (std::size_t i = 0; i < n; ++i) {
     if (r.filled[i] && r.failures[i].empty()) {
-      std::vector<const Mesh*> others;
-      for (const Mesh* m : all_filled)
-        if (m != &blocks[i].mesh) others.push_back(m);
-      const FillDeviation dev = meter.measure(
-          blocks[i].mesh, others, {.reach = options.tolerance, .error = error, .max_faces = options.max_region_faces});
+      const FillDeviation& dev = deviation[i];
       if (!dev.failure.empty())
         r.failures[i] = "its deviation could not be measured: " + dev.failure;
       else if (dev.bound() > options.tolerance)
@@ -117,8 +153,7 @@ MillToleranceResult mill_within_tolerance(const Mesh& solid, std::vector<Block> 
       else
         r.deviation[i] = dev.bound();
     }
-    if (progress) progress->update(++done, 2 * n);
-  });
+  }
   for (std::size_t i = 0; i < n; ++i)
     if (r.failures[i].empty()) r.max_deviation = std::max(r.max_deviation, r.deviation[i]);
   r.blocks = std::move(blocks);

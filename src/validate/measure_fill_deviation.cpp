@@ -5,8 +5,11 @@
 
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
 #include <CGAL/Polygon_mesh_processing/distance.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #include <cmath>
+#include <array>
+#include <map>
 #include <limits>
 #include <optional>
 #include <utility>
@@ -71,19 +74,29 @@ std::optional<Surface> local_surface(const Mesh& solid, const detail::SolidIndex
   std::optional<Surface> out;
   detail::DeterministicArena arena;
   std::vector<ExactMesh> pieces = detail::clip_solid_to_box(solid, index, region);
-  ExactMesh v = detail::to_exact(block);
+  ExactMesh v;
   const BoundingBox rb{region.min, region.max};
-  for (const Mesh* o : others) {
+  std::vector<const Mesh*> operands{&block};
+  operands.insert(operands.end(), others.begin(), others.end());
+  for (const Mesh* o : operands) {
     ExactMesh e = detail::to_exact(*o);
     if (!inside(bounding_box(*o), rb)) {
       ExactMesh box = detail::box_mesh(region), clipped;
       if (!PMP::corefine_and_compute_intersection(e, box, clipped)) return std::nullopt;
       e = std::move(clipped);
     }
-    if (e.number_of_faces() > 0 && !unite(v, e)) return std::nullopt;
+    if (e.number_of_faces() == 0) continue;
+    if (v.number_of_faces() == 0)
+      v = std::move(e);
+    else if (!unite(v, e))
+      return std::nullopt;
   }
-  for (ExactMesh& p : pieces)
-    if (!unite(v, p)) return std::nullopt;
+  for (ExactMesh& p : pieces) {
+    if (v.number_of_faces() == 0)
+      v = std::move(p);
+    else if (!unite(v, p))
+      return std::nullopt;
+  }
   std::vector<char> on_plane(v.number_of_faces(), 0);
   const detail::ExactKernel::FT lo[3] = {region.min.x(), region.min.y(), region.min.z()};
   const detail::ExactKernel::FT hi[3] = {region.max.x(), region.max.y(), region.max.z()};
@@ -107,7 +120,121 @@ std::optional<Surface> local_surface(const Mesh& solid, const detail::SolidIndex
   return out;
 }
 
+//! 16 ulps of the largest coordinate of `mesh`: the rounding slack of
+//! measure_fill() (see the header).
+double rounding_slack(const Mesh& mesh) {
+  const BoundingBox b = bounding_box(mesh);
+  if (b.is_empty()) return 0.0;
+  const double m = std::max(b.min.cwiseAbs().maxCoeff(), b.max.cwiseAbs().maxCoeff());
+  return 16.0 * std::numeric_limits<double>::epsilon() * m;
+}
+
+// ------------------------------------------------------------ fill_columns
+using Epick = CGAL::Exact_predicates_inexact_constructions_kernel;
+
+//! Exact sign of n.d of face f for the axis (dim k, sign s): the orientation
+//! of the face projected along d onto the plane of the two other coordinates.
+int facing(const Mesh& m, const Triangle& f, int k, int s) {
+  const int i = (k + 1) % 3, j = (k + 2) % 3;
+  auto p = [&](int v) {
+    const Vec3& q = m.vertices[static_cast<std::size_t>(v)];
+    return Epick::Point_2(q[i], q[j]);
+  };
+  return s * static_cast<int>(CGAL::orientation(p(f[0]), p(f[1]), p(f[2])));
+}
+
 }  // namespace
+
+std::optional<std::vector<BoundingBox>> fill_columns(const Mesh& carved, const Mesh& milled, Axis axis) {
+  const int k = axis_index(axis) / 2, s = axis_index(axis) % 2 == 0 ? 1 : -1;
+  auto h = [&](const Vec3& v) { return s * v[k]; };
+  if (carved.vertices.empty()) return std::vector<BoundingBox>{};
+  double base = std::numeric_limits<double>::infinity();
+  for (const Vec3& v : carved.vertices) base = std::min(base, h(v));
+  auto at_base = [&](const Mesh& m, const Triangle& f) {
+    for (int v : f)
+      if (h(m.vertices[static_cast<std::size_t>(v)]) != base) return false;
+    return true;
+  };
+  // The milled shape: no vertex below the base, every face facing away from d on the base plane.
+  for (const Vec3& v : milled.vertices)
+    if (h(v) < base) return std::nullopt;
+  for (const Triangle& f : milled.faces)
+    if (facing(milled, f, k, s) < 0 && !at_base(milled, f)) return std::nullopt;
+  // The column (box extended down to the base plane) of every face that can
+  // bound the fill from above.
+  std::vector<BoundingBox> boxes;
+  auto add = [&](const Mesh& m, const Triangle& f) {
+    BoundingBox b;
+    for (int v : f) b.extend(m.vertices[static_cast<std::size_t>(v)]);
+    if (s > 0)
+      b.min[k] = base;
+    else
+      b.max[k] = -base;
+    boxes.push_back(b);
+  };
+  for (const Triangle& f : carved.faces)
+    if (facing(carved, f, k, s) < 0 && !at_base(carved, f)) add(carved, f);
+  // A milled face facing d lies on the carved block's surface with the block
+  // under it when its three vertices are vertices of the carved block and
+  // lie in one carved face facing d that has the first of them as a corner
+  // (exact: coplanar, and inside it in the projection along d).
+  std::map<std::array<double, 3>, int> carved_vertex;
+  for (std::size_t v = 0; v < carved.vertices.size(); ++v) {
+    const Vec3& q = carved.vertices[v];
+    carved_vertex.emplace(std::array<double, 3>{q.x(), q.y(), q.z()}, static_cast<int>(v));
+  }
+  std::vector<std::vector<int>> incident(carved.vertices.size());
+  for (std::size_t f = 0; f < carved.faces.size(); ++f)
+    for (int v : carved.faces[f]) incident[static_cast<std::size_t>(v)].push_back(static_cast<int>(f));
+  const int i = (k + 1) % 3, j = (k + 2) % 3;
+  auto p3 = [](const Vec3& q) { return Epick::Point_3(q.x(), q.y(), q.z()); };
+  auto p2 = [&](const Vec3& q) { return Epick::Point_2(q[i], q[j]); };
+  auto on_carved = [&](const Triangle& f) {
+    std::array<int, 3> id{};
+    for (int q = 0; q < 3; ++q) {
+      const Vec3& x = milled.vertices[static_cast<std::size_t>(f[q])];
+      const auto it = carved_vertex.find({x.x(), x.y(), x.z()});
+      if (it == carved_vertex.end()) return false;
+      id[q] = it->second;
+    }
+    for (int t : incident[static_cast<std::size_t>(id[0])]) {
+      const Triangle& c = carved.faces[static_cast<std::size_t>(t)];
+      if (facing(carved, c, k, s) <= 0) continue;
+      const Vec3 &a = carved.vertices[static_cast<std::size_t>(c[0])], &b = carved.vertices[static_cast<std::size_t>(c[1])],
+                 &e = carved.vertices[static_cast<std::size_t>(c[2])];
+      const CGAL::Orientation turn = CGAL::orientation(p2(a), p2(b), p2(e));
+      bool in = true;
+      for (int q = 0; q < 3 && in; ++q) {
+        const Vec3& x = carved.vertices[static_cast<std::size_t>(id[q])];
+        in = CGAL::orientation(p3(a), p3(b), p3(e), p3(x)) == CGAL::COPLANAR &&
+             CGAL::orientation(p2(a), p2(b), p2(x)) != -turn && CGAL::orientation(p2(b), p2(e), p2(x)) != -turn &&
+             CGAL::orientation(p2(e), p2(a), p2(x)) != -turn;
+      }
+      if (in) return true;
+    }
+    return false;
+  };
+  for (const Triangle& f : milled.faces)
+    if (facing(milled, f, k, s) > 0 && !on_carved(f)) add(milled, f);
+  // One box per tile of an 8 x 8 grid over the block's footprint (the
+  // tile of each face's lowest corner): a ring of fill (a groove round the
+  // block) gives the tiles along it, not one box over the whole block.
+  const BoundingBox all = bounding_box(milled);
+  const double tile = std::max(all.size()[i], all.size()[j]) / 8.0;
+  std::map<std::pair<long, long>, BoundingBox> tiles;
+  for (const BoundingBox& b : boxes) {
+    const auto key = tile > 0 ? std::pair<long, long>{static_cast<long>(std::floor((b.min[i] - all.min[i]) / tile)),
+                                                        static_cast<long>(std::floor((b.min[j] - all.min[j]) / tile))}
+                                : std::pair<long, long>{0, 0};
+    BoundingBox& t = tiles[key];
+    t.extend(b.min);
+    t.extend(b.max);
+  }
+  std::vector<BoundingBox> out;
+  for (const auto& [key, b] : tiles) out.push_back(b);
+  return out;
+}
 
 struct FillDeviationMeter::Impl {
   explicit Impl(const Mesh& s) : solid(s), index(s) {}
@@ -121,12 +248,35 @@ const Mesh& FillDeviationMeter::solid() const { return impl_->solid; }
 
 FillDeviation FillDeviationMeter::measure(const Mesh& block, const std::vector<const Mesh*>& others,
                                           const FillDeviationOptions& options) const {
+  return measure_region(block, others, bounding_box(block), options);
+}
+
+FillDeviation FillDeviationMeter::measure_fill(const Mesh& block, const std::vector<const Mesh*>& others,
+                                               const std::vector<BoundingBox>& fill,
+                                               const FillDeviationOptions& options) const {
+  if (!(options.error > 0) || !(options.reach >= 0))
+    throw InvalidArgumentError("measure_fill_deviation: the error bound must be > 0 and the reach >= 0");
+  FillDeviation d;
+  d.error = options.error + rounding_slack(block);
+  for (const BoundingBox& core : fill) {
+    const FillDeviation r = measure_region(block, others, core, options);
+    if (!r.failure.empty()) {
+      d.failure = r.failure;
+      return d;
+    }
+    d.to_input = std::max(d.to_input, r.to_input);
+    d.from_input = std::max(d.from_input, r.from_input);
+  }
+  return d;
+}
+
+FillDeviation FillDeviationMeter::measure_region(const Mesh& block, const std::vector<const Mesh*>& others,
+                                                 const BoundingBox& box, const FillDeviationOptions& options) const {
   if (!(options.error > 0) || !(options.reach >= 0))
     throw InvalidArgumentError("measure_fill_deviation: the error bound must be > 0 and the reach >= 0");
   const Mesh& solid = impl_->solid;
   FillDeviation d;
   d.error = options.error;
-  const BoundingBox box = bounding_box(block);
   const BoundingBox reach = widened(box, options.reach);
   const std::vector<int> near = impl_->index.faces_near_closed_box(Box3{reach.min, reach.max});
   BoundingBox around = box;

@@ -368,6 +368,7 @@ ValidationReport validate_decomposition(const Mesh& input, const std::vector<Val
         continue;
       }
       const double ratio = out[i] / std::max(std::abs(volumes[i]), 1e-300);
+      report.volume_sticking_out += out[i];
       if (tolerant && ratio > options.outside_tolerance) {
         filled.push_back(i);
         continue;
@@ -378,7 +379,9 @@ ValidationReport validate_decomposition(const Mesh& input, const std::vector<Val
                                 fmt("%.3g", ratio) + " of the block)");
     }
     inside.summary = "worst ratio outside " + fmt("%.3g", worst);
-    if (tolerant) inside.summary += " (" + std::to_string(filled.size()) + " block(s) sticking out: check 10)";
+    if (tolerant)
+      inside.summary += " (" + std::to_string(filled.size()) + " block(s) sticking out: check 10; " +
+                        fmt("%.4g", report.volume_sticking_out) + " outside the input in all)";
   }
   report.checks.push_back(inside);
 

@@ -3,8 +3,17 @@
 
 #include <gtest/gtest.h>
 
+#include <set>
+#include <tuple>
+
+#include "geometry/clip_solid_to_box.h"
+#include "geometry/exact_mesh.h"
+#include "geometry/solid_index.h"
 #include "subfab/core/error.h"
+#include "subfab/mesh/read_mesh.h"
+#include "subfab/validate/milled_shape.h"
 #include "support/groove_shapes.h"
+#include "support/test_support.h"
 
 namespace subfab {
 namespace {
@@ -12,6 +21,28 @@ namespace {
 using test::cells_of_box;
 using test::grooved_box_cells;
 using test::voxel_mesh;
+
+//! Is p in one of the closed boxes?
+bool covered(const std::vector<BoundingBox>& boxes, const Vec3& p) {
+  for (const BoundingBox& b : boxes)
+    if ((b.min.array() <= p.array()).all() && (p.array() <= b.max.array()).all()) return true;
+  return false;
+}
+
+//! The cells of `cells` with x in [x0, x1).
+std::set<test::Cell> x_slab(const std::set<test::Cell>& cells, int x0, int x1) {
+  std::set<test::Cell> out;
+  for (const test::Cell& c : cells)
+    if (c[0] >= x0 && c[0] < x1) out.insert(c);
+  return out;
+}
+
+//! Milled shape of `carved` along `axis`, which must add material.
+Mesh milled_along(const Mesh& carved, Axis axis) {
+  MilledShape m = milled_shape(carved, axis_direction(axis));
+  EXPECT_FALSE(m.is_block);
+  return m.mesh;
+}
 
 TEST(MeasureFillDeviation, FillingAGrooveMovesTheSurfaceByItsDepth) {
   const Mesh solid = voxel_mesh(grooved_box_cells());
@@ -45,6 +76,157 @@ TEST(MeasureFillDeviation, ABlockStickingOutIsMeasuredFromItsFarthestPoint) {
   ASSERT_TRUE(d.failure.empty()) << d.failure;
   EXPECT_NEAR(d.to_input, 3.0, 1e-3);
   EXPECT_NEAR(d.from_input, 0.5, 1e-3);
+}
+
+TEST(FillColumns, CoverTheGroovesFillAndNotTheCoreAlongEitherDirection) {
+  // Milled along +z the groove fills from its ceiling (z = 6) down to the
+  // base (z = 0); along -z from its floor (z = 4) up to z = 10. The boxes
+  // are columns over the ring, never over the middle of the box.
+  const Mesh carved = voxel_mesh(grooved_box_cells());
+  for (Axis axis : {Axis::PosZ, Axis::NegZ}) {
+    const auto boxes = fill_columns(carved, milled_along(carved, axis), axis);
+    ASSERT_TRUE(boxes.has_value());
+    EXPECT_GE(boxes->size(), 4u);
+    for (const test::Cell& c : cells_of_box({0, 0, 4}, {10, 10, 6}))
+      if (test::in_groove(c)) {
+        EXPECT_TRUE(covered(*boxes, Vec3(c[0] + 0.5, c[1] + 0.5, c[2] + 0.5))) << c[0] << c[1] << c[2];
+      }
+    EXPECT_FALSE(covered(*boxes, Vec3(5, 5, 5)));
+    EXPECT_FALSE(covered(*boxes, Vec3(3, 3, 5)));
+  }
+  // Below the ceiling along +z (down to the base), above the floor along -z.
+  const auto up = fill_columns(carved, milled_along(carved, Axis::PosZ), Axis::PosZ);
+  EXPECT_TRUE(covered(*up, Vec3(0.5, 5, 0.5)));
+  EXPECT_FALSE(covered(*up, Vec3(0.5, 5, 7)));
+  const auto down = fill_columns(carved, milled_along(carved, Axis::NegZ), Axis::NegZ);
+  EXPECT_TRUE(covered(*down, Vec3(0.5, 5, 9.5)));
+  EXPECT_FALSE(covered(*down, Vec3(0.5, 5, 3)));
+}
+
+TEST(FillColumns, NothingAddedGivesNoBoxAndANonHeightFieldGivesNone) {
+  const Mesh full = voxel_mesh(cells_of_box({0, 0, 0}, {10, 10, 10}));
+  const auto none = fill_columns(full, full, Axis::PosZ);
+  ASSERT_TRUE(none.has_value());
+  EXPECT_TRUE(none->empty());
+  const Mesh grooved = voxel_mesh(grooved_box_cells());
+  EXPECT_FALSE(fill_columns(grooved, grooved, Axis::PosZ).has_value());  // the groove's ceiling faces -z
+  // The local measure of a block that adds nothing: 0 (+ the error bound).
+  const FillDeviationMeter meter(full);
+  const FillDeviation d = meter.measure_fill(full, {}, *none, {.reach = 1.0, .error = 0.01});
+  EXPECT_TRUE(d.failure.empty());
+  EXPECT_EQ(d.to_input, 0.0);
+  EXPECT_EQ(d.from_input, 0.0);
+  EXPECT_GE(d.error, 0.01);
+  EXPECT_LE(d.error, 0.01 + 1e-12);
+}
+
+TEST(MeasureFill, TheGroovesFillMeasuresItsDepthAsTheWholeBlockMeasureDoes) {
+  const Mesh solid = voxel_mesh(grooved_box_cells());
+  const FillDeviationMeter meter(solid);
+  for (Axis axis : {Axis::PosZ, Axis::PosX}) {
+    const Mesh milled = milled_along(solid, axis);
+    const auto boxes = fill_columns(solid, milled, axis);
+    ASSERT_TRUE(boxes.has_value());
+    const FillDeviationOptions o{.reach = 1.5, .error = 0.01};
+    const FillDeviation local = meter.measure_fill(milled, {}, *boxes, o);
+    const FillDeviation whole = meter.measure(milled, {}, o);
+    ASSERT_TRUE(local.failure.empty()) << local.failure;
+    ASSERT_TRUE(whole.failure.empty()) << whole.failure;
+    EXPECT_NEAR(local.to_input, whole.to_input, 0.02);
+    EXPECT_NEAR(local.from_input, whole.from_input, 0.02);
+    EXPECT_GE(local.bound(), 1.0);  // the true deviation is 1 (the groove's depth)
+    EXPECT_LE(local.bound(), 1.0 + 2 * 0.01);
+  }
+}
+
+TEST(MeasureFill, AnUpsideDownCupsBuriedCeilingRisesAboveItsRim) {
+  // A 6 x 6 x 4 box with a 4 x 4 x 3 cavity open at the bottom: milled
+  // along +z the cavity is filled. The filled bottom lies 2 from the cavity's
+  // walls (its middle); the cavity's ceiling (z = 3, higher than any face
+  // the milled shape adds) lies 1 under the top: to_input 2, from_input 1.
+  std::set<test::Cell> cells;
+  for (const test::Cell& c : cells_of_box({0, 0, 0}, {6, 6, 4}))
+    if (!(c[0] >= 1 && c[0] < 5 && c[1] >= 1 && c[1] < 5 && c[2] < 3)) cells.insert(c);
+  const Mesh solid = voxel_mesh(cells);
+  const Mesh milled = milled_along(solid, Axis::PosZ);
+  const auto boxes = fill_columns(solid, milled, Axis::PosZ);
+  ASSERT_TRUE(boxes.has_value());
+  EXPECT_TRUE(covered(*boxes, Vec3(3, 3, 3)));
+  const FillDeviationMeter meter(solid);
+  const FillDeviationOptions o{.reach = 2.5, .error = 0.01};
+  const FillDeviation local = meter.measure_fill(milled, {}, *boxes, o);
+  const FillDeviation whole = meter.measure(milled, {}, o);
+  ASSERT_TRUE(local.failure.empty()) << local.failure;
+  EXPECT_NEAR(local.to_input, 2.0, 0.01);
+  EXPECT_NEAR(local.from_input, 1.0, 0.01);
+  EXPECT_NEAR(local.to_input, whole.to_input, 0.02);
+  EXPECT_NEAR(local.from_input, whole.from_input, 0.02);
+}
+
+TEST(MeasureFill, TwoFilledBlocksWhoseFillsMeet) {
+  // The grooved box cut at x = 5 into two blocks, each milled along +z: the
+  // fills of the groove meet on the cut plane (on the y = 0 and y = 10
+  // sides). The left block is measured with the other's fill present: the
+  // groove's depth, 1, as the whole-block measure says (the right block is
+  // its mirror image).
+  const std::set<test::Cell> cells = grooved_box_cells();
+  const Mesh solid = voxel_mesh(cells);
+  const Mesh left = voxel_mesh(x_slab(cells, 0, 5)), right = voxel_mesh(x_slab(cells, 5, 10));
+  const Mesh left_milled = milled_along(left, Axis::PosZ), right_milled = milled_along(right, Axis::PosZ);
+  const FillDeviationMeter meter(solid);
+  const FillDeviationOptions o{.reach = 1.5, .error = 0.01};
+  for (const auto& [carved, milled, other] : {std::tuple{&left, &left_milled, &right_milled}}) {
+    const auto boxes = fill_columns(*carved, *milled, Axis::PosZ);
+    ASSERT_TRUE(boxes.has_value());
+    EXPECT_TRUE(covered(*boxes, Vec3(5, 0.5, 5)));  // where the two fills meet
+    const FillDeviation local = meter.measure_fill(*milled, {other}, *boxes, o);
+    const FillDeviation whole = meter.measure(*milled, {other}, o);
+    ASSERT_TRUE(local.failure.empty()) << local.failure;
+    ASSERT_TRUE(whole.failure.empty()) << whole.failure;
+    EXPECT_NEAR(local.to_input, 1.0, 0.01);
+    EXPECT_NEAR(local.from_input, 1.0, 0.01);
+    EXPECT_NEAR(local.to_input, whole.to_input, 0.02);
+    EXPECT_NEAR(local.from_input, whole.from_input, 0.02);
+  }
+}
+
+TEST(MeasureFill, AgreesWithTheWholeBlockMeasureOnPiecesOfTheBunny) {
+  // Real carved blocks: the bunny cut by a box (exactly, as carve does),
+  // milled along three axes. Where the whole-block measure is exact (the
+  // deviation within the reach), the local one agrees within the error
+  // bounds; beyond the reach both exceed it (neither may pass a block).
+  const Mesh bunny = read_mesh(test::data_path("bunny_lowres.off"));
+  const BoundingBox bb = bounding_box(bunny);
+  const double diagonal = bb.diagonal();
+  const detail::SolidIndex index(bunny);
+  const Vec3 lo = bb.min + 0.45 * bb.size(), hi = bb.max + Vec3::Constant(0.01 * diagonal);
+  std::vector<detail::ExactMesh> pieces = detail::clip_solid_to_box(bunny, index, Box3{lo, hi});
+  ASSERT_FALSE(pieces.empty());
+  std::size_t biggest = 0;
+  for (std::size_t p = 1; p < pieces.size(); ++p)
+    if (pieces[p].number_of_faces() > pieces[biggest].number_of_faces()) biggest = p;
+  const Mesh carved = detail::to_double(pieces[biggest]);
+  const FillDeviationMeter meter(bunny);
+  const FillDeviationOptions o{.reach = 0.04 * diagonal, .error = 1e-3 * diagonal};
+  int compared = 0;
+  for (Axis axis : {Axis::PosZ, Axis::NegY}) {
+    const MilledShape m = milled_shape(carved, axis_direction(axis));
+    if (m.is_block) continue;
+    const auto boxes = fill_columns(carved, m.mesh, axis);
+    ASSERT_TRUE(boxes.has_value());
+    const FillDeviation local = meter.measure_fill(m.mesh, {}, *boxes, o);
+    const FillDeviation whole = meter.measure(m.mesh, {}, o);
+    ASSERT_TRUE(local.failure.empty()) << local.failure;
+    ASSERT_TRUE(whole.failure.empty()) << whole.failure;
+    for (const auto& [l, w] : {std::pair{local.to_input, whole.to_input}, std::pair{local.from_input, whole.from_input}}) {
+      if (w + o.error <= o.reach)
+        EXPECT_NEAR(l, w, 2 * o.error + local.error - o.error) << axis_index(axis);
+      else
+        EXPECT_GT(l + o.error, o.reach) << axis_index(axis);
+    }
+    ++compared;
+  }
+  EXPECT_GE(compared, 2);
 }
 
 TEST(MeasureFillDeviation, RejectsABadErrorBound) {

@@ -15,7 +15,10 @@
 //!   3. the model then made, the input with every block that sticks out,
 //!      stays within T of the input near it: FillDeviationMeter (exact
 //!      booleans, bounded-error Hausdorff distances both ways), measured
-//!      value + error bound <= T.
+//!      value + error bound <= T. Only where the milled shape adds material
+//!      to the carved block can it deviate: the measure runs in the boxes
+//!      fill_columns() gives (one parallel task per box), near the whole
+//!      block only when those cannot be computed.
 //! A block that fails any of them is reported; the caller takes the
 //! allowances back there and decomposes again (decompose()).
 #pragma once

@@ -30,14 +30,37 @@
 //! the local distances are within it; and with r >= the tolerance, every
 //! nearest point within r of a point of Q lies inside R', where V's surface
 //! is ∂S' exactly.
+//!
+//! measure_fill() (issue 17: the whole-box measure took > 9 min on max
+//! planck's big blocks) measures the same distance only where the milled
+//! shape F added material to the carved block C, given boxes that cover
+//! the fill G = closure(F \ C) (fill_columns() computes them without a
+//! boolean). Why that is enough, for C ⊆ S (a carved block) and C ⊆ F:
+//!   - a point p of ∂S' in no G_k: if p lay in some F_k \ S it would lie in
+//!     F_k \ C_k ⊆ G_k, so p ∈ S, and p ∉ int S' ⊇ int S, so p ∈ ∂S:
+//!     distance 0;
+//!   - a point x of ∂S in no G_k: x ∉ int C_k (C_k ⊆ S), and x ∈ F_k would
+//!     put a neighbourhood of x in F_k inside C_k, so x ∉ int F_k; if a
+//!     ball around x lay in S', its points outside S (there are, x ∈ ∂S)
+//!     would lie in ∪ F_k \ S ⊆ ∪ G_k, and x in their closure ∪ G_k; so
+//!     x ∈ ∂S': distance 0.
+//! So only points in the G_k deviate, and each lies in a covering box B;
+//! measure_region(B) measures it exactly as above (steps 1-3 with box(F)
+//! replaced by B, the block clipped to the region like the others). The
+//! result is the maximum over the boxes. Rounding: the carved block's
+//! vertices are rounded once from exact points of S, so C ⊆ S holds up to
+//! a displacement of a few ulps of the coordinates; measure_fill() adds
+//! 16 ulps of the largest coordinate to the error bound for it.
 #pragma once
 
 #include <algorithm>
 #include <cstddef>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "subfab/geometry/axis.h"
 #include "subfab/mesh/mesh.h"
 
 namespace subfab {
@@ -81,11 +104,44 @@ class FillDeviationMeter {
   FillDeviation measure(const Mesh& block, const std::vector<const Mesh*>& others,
                         const FillDeviationOptions& options) const;
 
+  //! The same distance, measured only near `core` (a closed box): exact for
+  //! the points of ∂S' in `core` and of ∂S in `core` (steps 1-3 of the file
+  //! comment with box(block) replaced by `core`). measure() is
+  //! measure_region() with core = box(block).
+  FillDeviation measure_region(const Mesh& block, const std::vector<const Mesh*>& others, const BoundingBox& core,
+                               const FillDeviationOptions& options) const;
+
+  //! The deviation near `block`, measured only in the boxes `fill` that
+  //! cover where block sticks out of its carved block (fill_columns()): the
+  //! maximum of measure_region() over them, the error bound widened by the
+  //! rounding slack of the file comment. No box: nothing deviates (0).
+  FillDeviation measure_fill(const Mesh& block, const std::vector<const Mesh*>& others,
+                             const std::vector<BoundingBox>& fill, const FillDeviationOptions& options) const;
+
   const Mesh& solid() const;
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+//! Closed boxes whose union covers the fill G = closure(milled \ carved) of
+//! a block milled along an axis (no boolean; exact orientation predicates).
+//! With h(v) = v.d and base = min h over the carved block: on a line along
+//! d, the milled shape (a height field whose only faces facing away from d
+//! lie on the base plane: checked) is [base, top]; where its top face has
+//! its vertices among the carved block's and lies in one carved face facing
+//! d, the carved block lies just under top; then every point of G on the
+//! line lies below a point where the line enters the carved block from
+//! below, on a face facing away from d (exact sign) not on the base plane.
+//! So G lies in the columns (box extended down to the base plane) of those
+//! faces of the carved block and of the milled faces facing d that do not
+//! lie in a carved face facing d (exact test). The columns are gathered per
+//! tile of an 8 x 8 grid over the footprint (one box per tile).
+//! \param carved closed, outward-oriented block (carve_blocks()), inside the solid
+//! \param milled its milled shape along `axis` (milled_shape())
+//! \return nullopt when the milled mesh is not such a height field (measure
+//!         the whole block instead); an empty vector when nothing is added
+std::optional<std::vector<BoundingBox>> fill_columns(const Mesh& carved, const Mesh& milled, Axis axis);
 
 }  // namespace subfab
