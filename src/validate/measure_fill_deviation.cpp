@@ -49,13 +49,19 @@ double hausdorff(const detail::DistanceMesh& from, const detail::DistanceMesh& t
   return PMP::bounded_error_Hausdorff_distance<CGAL::Sequential_tag>(from, to, error, no_match, no_match);
 }
 
+const auto kThrowOnSelfIntersection = CGAL::parameters::throw_on_self_intersection(true);
+
 //! a := a ∪ b (exact); false when CGAL cannot (a non-manifold result), or
 //! when either operand touches itself (two vertices at one exact point):
 //! the corefinement's precondition, which it does not check and can loop on.
+//! An operand that self-intersects near the cut throws
+//! Self_intersection_exception (caught in local_surface(), inside its arena):
+//! CGAL 5.5 does not check that precondition otherwise and can crash
+//! (decimated_knight.off at --tolerance 5e-4: segfault in this union).
 bool unite(ExactMesh& a, ExactMesh& b) {
   if (detail::has_coincident_vertices(a) || detail::has_coincident_vertices(b)) return false;
   ExactMesh out;
-  if (!PMP::corefine_and_compute_union(a, b, out)) return false;
+  if (!PMP::corefine_and_compute_union(a, b, out, kThrowOnSelfIntersection, kThrowOnSelfIntersection)) return false;
   a = std::move(out);
   return true;
 }
@@ -68,11 +74,36 @@ struct Surface {
   std::vector<int> faces;  // faces of mesh not on a plane of the region
 };
 
+//! Exceptions are caught here, while the arena lives, and their message is
+//! copied to `error` on the heap (an exception's message allocated in the
+//! arena must not be read after the arena ends).
+void local_surface_in_arena(const Mesh& solid, const detail::SolidIndex& index, const Mesh& block,
+                            const std::vector<const Mesh*>& others, const Box3& region, std::optional<Surface>& out);
+
 std::optional<Surface> local_surface(const Mesh& solid, const detail::SolidIndex& index, const Mesh& block,
-                                     const std::vector<const Mesh*>& others, const Box3& region) {
+                                     const std::vector<const Mesh*>& others, const Box3& region, std::string& error) {
   detail::warm_up_exact_booleans();
   std::optional<Surface> out;
   detail::DeterministicArena arena;
+  try {
+    local_surface_in_arena(solid, index, block, others, region, out);
+    return out;  // moved (a local): no allocation in the arena
+  } catch (const PMP::Corefinement::Self_intersection_exception&) {
+    detail::SuspendArena heap;
+    error = "an operand of the exact union self-intersects near the cut";
+  } catch (const std::exception& e) {
+    detail::SuspendArena heap;
+    error = std::string("exact boolean failed: ") + e.what();
+  }
+  detail::SuspendArena heap;
+  out.reset();
+  return std::nullopt;
+}
+
+//! Fills `out` (under a SuspendArena) with the surface; leaves it empty when
+//! a union is not a 2-manifold.
+void local_surface_in_arena(const Mesh& solid, const detail::SolidIndex& index, const Mesh& block,
+                            const std::vector<const Mesh*>& others, const Box3& region, std::optional<Surface>& out) {
   std::vector<ExactMesh> pieces = detail::clip_solid_to_box(solid, index, region);
   ExactMesh v;
   const BoundingBox rb{region.min, region.max};
@@ -82,20 +113,22 @@ std::optional<Surface> local_surface(const Mesh& solid, const detail::SolidIndex
     ExactMesh e = detail::to_exact(*o);
     if (!inside(bounding_box(*o), rb)) {
       ExactMesh box = detail::box_mesh(region), clipped;
-      if (!PMP::corefine_and_compute_intersection(e, box, clipped)) return std::nullopt;
+      if (!PMP::corefine_and_compute_intersection(e, box, clipped, kThrowOnSelfIntersection,
+                                                  kThrowOnSelfIntersection))
+        return;
       e = std::move(clipped);
     }
     if (e.number_of_faces() == 0) continue;
     if (v.number_of_faces() == 0)
       v = std::move(e);
     else if (!unite(v, e))
-      return std::nullopt;
+      return;
   }
   for (ExactMesh& p : pieces) {
     if (v.number_of_faces() == 0)
       v = std::move(p);
     else if (!unite(v, p))
-      return std::nullopt;
+      return;
   }
   std::vector<char> on_plane(v.number_of_faces(), 0);
   const detail::ExactKernel::FT lo[3] = {region.min.x(), region.min.y(), region.min.z()};
@@ -117,7 +150,6 @@ std::optional<Surface> local_surface(const Mesh& solid, const detail::SolidIndex
       if (!on_plane[f]) out->faces.push_back(static_cast<int>(f));
     std::vector<ExactMesh>().swap(pieces);
   }
-  return out;
 }
 
 //! 16 ulps of the largest coordinate of `mesh`: the rounding slack of
@@ -295,11 +327,11 @@ FillDeviation FillDeviationMeter::measure_region(const Mesh& block, const std::v
   std::vector<const Mesh*> close;
   for (const Mesh* o : others)
     if (o != &block && boxes_meet(bounding_box(*o), region)) close.push_back(o);
-  std::optional<Surface> surface;
-  try {
-    surface = local_surface(solid, impl_->index, block, close, Box3{region.min, region.max});
-  } catch (const std::exception& e) {
-    d.failure = std::string("exact boolean failed: ") + e.what();
+  std::string error;
+  const std::optional<Surface> surface =
+      local_surface(solid, impl_->index, block, close, Box3{region.min, region.max}, error);
+  if (!error.empty()) {
+    d.failure = error;
     return d;
   }
   if (!surface) {
