@@ -78,6 +78,24 @@ TEST(MeasureFillDeviation, ABlockStickingOutIsMeasuredFromItsFarthestPoint) {
   EXPECT_NEAR(d.from_input, 0.5, 1e-3);
 }
 
+TEST(MeasureFillDeviation, ABlockThatCrossesItselfNearTheCutFailsTheMeasureWithoutACrash) {
+  // Regression (decimated_knight at --tolerance 5e-4 segfaulted inside CGAL's
+  // corefinement in the measure's union): the block is two boxes in one
+  // mesh that cross each other where they cross the cube's top face. The
+  // measure must report a failure (the block then fails, conservatively),
+  // never a number and never a crash.
+  const Mesh solid = voxel_mesh(cells_of_box({0, 0, 0}, {4, 4, 4}));
+  Mesh block = voxel_mesh(cells_of_box({1, 1, 0}, {2, 3, 7}));
+  Mesh across = voxel_mesh(cells_of_box({0, 0, 0}, {3, 1, 1}));
+  for (Vec3& v : across.vertices) v += Vec3(0.5, 1.5, 3.5);
+  const int offset = static_cast<int>(block.vertices.size());
+  block.vertices.insert(block.vertices.end(), across.vertices.begin(), across.vertices.end());
+  for (Triangle t : across.faces) block.faces.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+  const FillDeviationMeter meter(solid);
+  const FillDeviation d = meter.measure(block, {}, {.reach = 4.0, .error = 1e-3});
+  EXPECT_FALSE(d.failure.empty()) << "measured " << d.to_input << " / " << d.from_input;
+}
+
 TEST(FillColumns, CoverTheGroovesFillAndNotTheCoreAlongEitherDirection) {
   // Milled along +z the groove fills from its ceiling (z = 6) down to the
   // base (z = 0); along -z from its floor (z = 4) up to z = 10. The boxes
