@@ -376,7 +376,7 @@ int run_validate(const ValidateArgs& args) {
     int k = 1;
     for (const CheckReport& c : report.checks) {
       out << "  " << k++ << ". " << (c.passed ? "PASS" : "FAIL") << "  " << std::left << std::setw(62) << c.name
-          << c.summary << "\n";
+          << (c.name.size() >= 62 ? "  " : "") << c.summary << "\n";
       for (const std::string& f : c.failures) out << "           " << f << "\n";
       if (c.num_failures > c.failures.size())
         out << "           ... and " << (c.num_failures - c.failures.size()) << " more\n";

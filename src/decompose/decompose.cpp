@@ -23,6 +23,10 @@
 #include "subfab/fidelity/find_infeasible_features.h"
 #include "subfab/decompose/grow_boxes.h"
 #include "subfab/decompose/merge_blocks.h"
+#include "decompose/single_precision_cleanup.h"
+#include "subfab/decompose/export_decomposition.h"
+#include "subfab/decompose/finalize_blocks.h"
+#include "subfab/validate/validate_decomposition.h"
 #include "subfab/decompose/merge_within_tolerance.h"
 #include "subfab/decompose/mill_within_tolerance.h"
 #include "subfab/decompose/tolerance_allowances.h"
@@ -612,6 +616,20 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
     to.machine_size = machine;
     to.progress = progress;
     if (!filled.empty()) to.filled = &filled;
+    // A merged block must survive the export: rounded to the input frame
+    // (finalize_blocks()) and written in single precision (its machine STL).
+    FinalizeOptions fo;
+    fo.normal_tolerance = height_field_normal_tolerance(result.max_overhang_deg);
+    const RoundedBlockCheck rounding(result.repaired_input ? *result.repaired_input : input, result, fo);
+    to.block_defect = [&rounding, &result](const Block& b) {
+      Mesh finished;
+      std::string defect = rounding.defect(b, &finished);
+      if (defect.empty() && !finished.faces.empty()) {
+        Mesh machine = machine_mesh_of(finished, b.axis, result.rotation);
+        if (!detail::clean_single_precision(machine, finished).ok) defect = "not a solid in single precision";
+      }
+      return defect;
+    };
     ToleranceMergeResult merged = merge_within_tolerance(solid, std::move(result.blocks), to);
     result.blocks = std::move(merged.blocks);
     result.filled = std::move(merged.filled);

@@ -68,6 +68,23 @@ Eigen::Matrix3d axis_to_machine(Axis axis) {
   return q;
 }
 
+Mesh machine_mesh_of(const Mesh& block, Axis axis, const Eigen::Matrix3d& rotation, Vec3* shift) {
+  // An exact product (signed permutation), each coordinate rounded once.
+  const Eigen::Matrix3d to_machine = axis_to_machine(axis) * rotation;
+  Mesh m;
+  m.faces = block.faces;
+  m.vertices.reserve(block.num_vertices());
+  BoundingBox box;
+  for (const Vec3& v : block.vertices) {
+    m.vertices.push_back(detail::rotate_accurately(to_machine, v));
+    box.extend(m.vertices.back());
+  }
+  const Vec3 s = -box.min;
+  for (Vec3& v : m.vertices) v += s;
+  if (shift) *shift = s;
+  return m;
+}
+
 std::vector<ExportedBlock> make_exported_blocks(const Mesh& input, const DecomposeResult& result,
                                                 Progress* progress) {
   FinalizeOptions fo;
@@ -82,20 +99,20 @@ std::vector<ExportedBlock> make_exported_blocks(const Mesh& input, const Decompo
     e.axis = b.axis;
     e.direction = b.direction;
     e.mesh = std::move(b.mesh);
-    // Machine mesh: the final block through (axis_to_machine x rotation), an
-    // exact product (signed permutation), each coordinate rounded once; then a shift.
     const Eigen::Matrix3d to_machine = axis_to_machine(b.axis) * result.rotation;
-    e.machine_mesh.faces = e.mesh.faces;
-    e.machine_mesh.vertices.reserve(e.mesh.num_vertices());
-    BoundingBox mb;
-    for (const Vec3& v : e.mesh.vertices) {
-      e.machine_mesh.vertices.push_back(detail::rotate_accurately(to_machine, v));
-      mb.extend(e.machine_mesh.vertices.back());
-    }
-    const Vec3 shift = -mb.min;
-    for (Vec3& v : e.machine_mesh.vertices) v += shift;
+    Vec3 shift;
+    e.machine_mesh = machine_mesh_of(e.mesh, b.axis, result.rotation, &shift);
+    const BoundingBox mb = bounding_box(e.machine_mesh);
     // The STL stores float32: make sure the rounded mesh is still a solid.
+    // When the cleanup cannot make it one, both meshes are kept as they were
+    // (the block, valid in doubles, is not damaged by a partial cleanup; check
+    // 8 reports the STL).
+    const Mesh block_before = e.mesh, machine_before = e.machine_mesh;
     const detail::SinglePrecisionCleanup clean = detail::clean_single_precision(e.machine_mesh, e.mesh);
+    if (!clean.ok) {
+      e.mesh = block_before;
+      e.machine_mesh = machine_before;
+    }
     if (progress && (clean.num_collapsed > 0 || clean.num_nudged > 0 || !clean.ok)) {
       char buf[256];
       std::snprintf(buf, sizeof buf,

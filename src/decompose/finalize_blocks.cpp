@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iterator>
+#include <memory>
 #include <utility>
 #include <string>
 #include <unordered_map>
@@ -249,22 +250,20 @@ std::string block_defect(const Mesh& block, const Vec3& direction, double diagon
   return {};
 }
 
-namespace {
+//! Steps 1-3 of finalize_blocks() on one block at a time (thread-safe).
+struct RoundedBlockCheck::Impl {
+  Impl(const Mesh& input_, const DecomposeResult& result, const FinalizeOptions& options_)
+      : input(input_), options(options_), back(result.rotation.transpose()) {
+    // Canonical input vertices -> input vertices (their exact coordinates come back).
+    const std::size_t n_in =
+        std::min({result.num_input_vertices, result.canonical.num_vertices(), input.num_vertices()});
+    for (std::size_t i = 0; i < n_in; ++i) input_vertex.emplace(result.canonical.vertices[i], static_cast<int>(i));
+    diagonal = bounding_box(input).diagonal();
+    tolerance = options.relative_tolerance * rounding_scale(input);
+  }
 
-//! Steps 1-3 of finalize_blocks() on every block of `result`, in parallel.
-std::vector<Finished> finish_blocks(const Mesh& input, const DecomposeResult& result, const FinalizeOptions& options) {
-  // Canonical input vertices -> input vertices (their exact coordinates come back).
-  std::unordered_map<Vec3, int, VecHash> input_vertex;
-  const std::size_t n_in = std::min({result.num_input_vertices, result.canonical.num_vertices(), input.num_vertices()});
-  for (std::size_t i = 0; i < n_in; ++i) input_vertex.emplace(result.canonical.vertices[i], static_cast<int>(i));
-  const Eigen::Matrix3d back = result.rotation.transpose();
-  const double diagonal = bounding_box(input).diagonal();
-  const double tolerance = options.relative_tolerance * rounding_scale(input);
-
-  std::vector<Finished> done(result.blocks.size());
-  parallel_for(0, result.blocks.size(), [&](std::size_t i) {
-    const Block& b = result.blocks[i];
-    Finished& out = done[i];
+  Finished finish(const Block& b) const {
+    Finished out;
     out.block.axis = b.axis;
     out.block.source_box = b.source_box;
     out.block.direction = detail::rotate_accurately(back, axis_direction(b.axis));
@@ -281,7 +280,7 @@ std::vector<Finished> finish_blocks(const Mesh& input, const DecomposeResult& re
       out.cleanup = clean_rounded_block(m, out.block.direction, tolerance, options);
       if (m.faces.empty()) {
         out.dropped = true;
-        return;
+        return out;
       }
       out.error = block_defect(m, out.block.direction, diagonal, options);
     } catch (const std::exception& e) {
@@ -295,8 +294,35 @@ std::vector<Finished> finish_blocks(const Mesh& input, const DecomposeResult& re
       out.error.clear();
       out.cleanup = {};
     }
-  });
+    return out;
+  }
 
+  const Mesh& input;
+  FinalizeOptions options;
+  Eigen::Matrix3d back;
+  std::unordered_map<Vec3, int, VecHash> input_vertex;
+  double diagonal = 0.0;
+  double tolerance = 0.0;
+};
+
+RoundedBlockCheck::RoundedBlockCheck(const Mesh& input, const DecomposeResult& result, const FinalizeOptions& options)
+    : impl_(std::make_unique<Impl>(input, result, options)) {}
+
+RoundedBlockCheck::~RoundedBlockCheck() = default;
+
+std::string RoundedBlockCheck::defect(const Block& block, Mesh* finished) const {
+  Finished f = impl_->finish(block);
+  if (finished) *finished = f.dropped ? Mesh{} : std::move(f.block.mesh);
+  return f.error;
+}
+
+namespace {
+
+//! Steps 1-3 of finalize_blocks() on every block of `result`, in parallel.
+std::vector<Finished> finish_blocks(const Mesh& input, const DecomposeResult& result, const FinalizeOptions& options) {
+  const RoundedBlockCheck::Impl finisher(input, result, options);
+  std::vector<Finished> done(result.blocks.size());
+  parallel_for(0, result.blocks.size(), [&](std::size_t i) { done[i] = finisher.finish(result.blocks[i]); });
   return done;
 }
 

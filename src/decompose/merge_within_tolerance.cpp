@@ -123,7 +123,10 @@ std::optional<Candidate> evaluate(std::size_t i, std::size_t j, const State& s, 
       continue;
     }
     ++tried;
-    if (milled.is_block) return Candidate{*u, axis, s.filled[i] || s.filled[j], 0.0};
+    if (milled.is_block) {
+      if (o.block_defect && !o.block_defect(Block{*u, axis, -1}).empty()) continue;
+      return Candidate{*u, axis, s.filled[i] || s.filled[j], 0.0};
+    }
     const Mesh& m = milled.mesh;
     if (!check_closed_solid(m).ok() || !is_height_field(m, d)) continue;
     // The deviation first (it rejects most), then collisions (exact booleans).
@@ -150,6 +153,7 @@ std::optional<Candidate> evaluate(std::size_t i, std::size_t j, const State& s, 
       }
     }
     if (collides) continue;
+    if (o.block_defect && !o.block_defect(Block{m, axis, -1}).empty()) continue;
     return Candidate{m, axis, true, dev.bound()};
   }
   return std::nullopt;

@@ -19,6 +19,7 @@
 #include <unordered_map>
 #include <utility>
 
+#include "subfab/checks/check_self_intersections.h"
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
 #include "subfab/geometry/axis.h"
@@ -175,12 +176,16 @@ ValidationReport validate_decomposition(const Mesh& input, const std::vector<Val
   ValidationReport report;
 
   // 1. closed solid
-  CheckReport solid = named_check("closed oriented 2-manifold, positive volume");
+  CheckReport solid = named_check("closed oriented 2-manifold, positive volume, no self-intersection");
   std::vector<double> volumes(n, 0.0);
   {
     StageScope stage(progress, "check: closed solids");
     std::vector<SolidReport> rs(n);
-    parallel_for(0, n, [&](std::size_t i) { rs[i] = check_closed_solid(blocks[i].mesh); });
+    std::vector<std::size_t> crossings(n, 0);  // pairs of faces crossing (exact; the booleans need none)
+    parallel_for(0, n, [&](std::size_t i) {
+      rs[i] = check_closed_solid(blocks[i].mesh);
+      if (rs[i].ok()) crossings[i] = check_self_intersections(blocks[i].mesh).num_offending;
+    });
     std::size_t degenerate = 0;
     for (std::size_t i = 0; i < n; ++i) {
       volumes[i] = rs[i].volume;
@@ -190,6 +195,9 @@ ValidationReport validate_decomposition(const Mesh& input, const std::vector<Val
                                std::to_string(rs[i].num_non_manifold_edges) + " non-manifold edges, " +
                                std::to_string(rs[i].num_non_manifold_vertices) + " non-manifold vertices, volume " +
                                fmt("%.6g", rs[i].volume));
+      else if (crossings[i] > 0)
+        add_failure(solid, block_name(i) + ": the surface intersects itself (" + std::to_string(crossings[i]) +
+                               " pairs of faces)");
     }
     if (n == 0) add_failure(solid, "the decomposition has no blocks");
     solid.summary = std::to_string(n) + " blocks, " + std::to_string(degenerate) + " zero-area faces";

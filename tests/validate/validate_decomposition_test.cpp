@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "support/block_test_shapes.h"
+#include "subfab/core/error.h"
 #include "subfab/mesh/read_mesh.h"
 #include "support/test_support.h"
 #include "support/voxel_solid.h"
@@ -187,6 +188,32 @@ TEST(ValidateDecomposition, ClosedSolidCheck) {
   }
   ASSERT_EQ(a.vertices[6], Vec3(1, 1, 1));
   EXPECT_EQ(check_closed_solid(a).num_non_manifold_vertices, 1u);
+}
+
+TEST(ValidateDecomposition, ABlockThatCrossesItselfFailsCheckOneAndNoBooleanRunsOnIt) {
+  // Regression (validate of anchor.off at --tolerance 5e-4 segfaulted, exit
+  // 139, inside CGAL's clip in the overlap check: block 042's OBJ crossed
+  // itself, and checks 1-2 had passed). The block: two boxes in one mesh,
+  // crossing each other; a second block overlaps it. Check 1 must name it,
+  // and checks 3 and 4 must refuse the booleans with a message.
+  const Mesh input = box_solid({0, 0, 0}, {4, 4, 4});
+  Mesh crossing = box_solid({1, 1, 0}, {2, 3, 4});
+  const Mesh across = box_solid({0.5, 1.5, 1}, {3.5, 2.5, 2});
+  const int offset = static_cast<int>(crossing.vertices.size());
+  crossing.vertices.insert(crossing.vertices.end(), across.vertices.begin(), across.vertices.end());
+  for (Triangle t : across.faces) crossing.faces.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+  ASSERT_TRUE(check_closed_solid(crossing).ok());  // combinatorially a closed solid
+  const std::vector<ValidationBlock> blocks = {up_block(crossing), up_block(box_solid({1.5, 0, 0}, {4, 4, 4}))};
+  const ValidationReport r = validate_decomposition(input, blocks, fast_options());
+  ASSERT_FALSE(check(r, 1).passed);
+  ASSERT_FALSE(check(r, 1).failures.empty());
+  EXPECT_NE(check(r, 1).failures[0].find("block 000: the surface intersects itself"), std::string::npos)
+      << check(r, 1).failures[0];
+  ASSERT_FALSE(check(r, 3).failures.empty());
+  EXPECT_NE(check(r, 3).failures[0].find("intersects itself"), std::string::npos) << check(r, 3).failures[0];
+  EXPECT_THROW(blocks_overlap(crossing, blocks[1].mesh), AlgorithmError);
+  EXPECT_THROW(volume_outside(crossing, input), AlgorithmError);
+  EXPECT_FALSE(r.passed());
 }
 
 TEST(ValidateDecomposition, OverlapAndOutsideVolumesAreExact) {

@@ -78,6 +78,13 @@ struct ExportedBlock {
 //! determinant +1): machine = axis_to_machine(axis) x canonical + shift.
 Eigen::Matrix3d axis_to_machine(Axis axis);
 
+//! A finished block (input frame) in machine coordinates: moved by
+//! axis_to_machine(axis) x rotation (an exact signed permutation of the
+//! rotation's rows, each coordinate rounded once), then shifted so that its
+//! bounding box starts at the origin (`shift`, when given, receives it).
+//! Same vertex ids as `block`.
+Mesh machine_mesh_of(const Mesh& block, Axis axis, const Eigen::Matrix3d& rotation, Vec3* shift = nullptr);
+
 //! Builds the exported blocks from a decomposition: finalize_blocks() maps
 //! them to the input frame (one rounding), cleans the rounding artefacts and
 //! verifies each block; machine meshes are the final blocks moved by

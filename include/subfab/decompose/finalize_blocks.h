@@ -30,6 +30,7 @@
 #pragma once
 
 #include <cstddef>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -88,6 +89,29 @@ FinalizeResult finalize_blocks(const Mesh& input, const DecomposeResult& result,
 //! itself once rounded). Same parameters as finalize_blocks().
 std::vector<std::string> block_defects_after_rounding(const Mesh& input, const DecomposeResult& result,
                                                       const FinalizeOptions& options = {});
+
+//! Steps 1-3 of finalize_blocks() on one block at a time, for a stage that
+//! makes new blocks after the carve (merge_within_tolerance(): a merged
+//! milled shape can be valid in the canonical frame and not once rounded to
+//! the input frame: anchor.off at --tolerance 5e-4, a non-manifold block
+//! 012). Holds references to `input` and `result.canonical`: they must
+//! outlive it (result.blocks may change meanwhile). Thread-safe.
+class RoundedBlockCheck {
+ public:
+  RoundedBlockCheck(const Mesh& input, const DecomposeResult& result, const FinalizeOptions& options = {});
+  ~RoundedBlockCheck();
+  RoundedBlockCheck(const RoundedBlockCheck&) = delete;
+  RoundedBlockCheck& operator=(const RoundedBlockCheck&) = delete;
+  //! What finalize_blocks() would report wrong with `block` (canonical
+  //! frame); empty when it would be valid, or dropped as thinner than the
+  //! cleanup tolerance. `finished`, when given, receives the block as
+  //! finalize_blocks() would make it (input frame; empty when dropped).
+  std::string defect(const Block& block, Mesh* finished = nullptr) const;
+  struct Impl;
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
 
 //! The cleanup of step 2 on one block: collapses edges shorter than
 //! `tolerance` (model units) and flips the longest edge of caps lower than

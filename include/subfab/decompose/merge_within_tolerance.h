@@ -29,7 +29,9 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "subfab/core/progress.h"
@@ -55,6 +57,9 @@ struct ToleranceMergeOptions {
   int max_rounds = 64;            // rounds of pairwise merging
   const std::vector<char>* filled = nullptr;  // per input block: 1 when it already sticks out of the solid
                                   // (milled shapes of mill_within_tolerance()); nullptr: none does
+  std::function<std::string(const Block&)> block_defect;  // the export's check of a merged block (decompose():
+                                  // RoundedBlockCheck, rounded to the input frame); a merge whose block it
+                                  // finds a defect in is not taken. Empty: not checked. Called in parallel
   Progress* progress = nullptr;   // progress and info (nullptr: silent)
 };
 

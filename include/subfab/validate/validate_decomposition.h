@@ -3,7 +3,8 @@
 //! Checkers for a height-field block decomposition (thesis Section 4.2, the
 //! six validity conditions), usable on their own by tests and users and
 //! together by validate_decomposition() (`subfab validate`):
-//!   1. every block is a closed, oriented 2-manifold with positive volume;
+//!   1. every block is a closed, oriented 2-manifold with positive volume that
+//!      does not intersect itself (exact; the booleans of 3, 4 and 10 need it);
 //!   2. height field: every face whose unit normal n has n.d < -1e-3 lies on
 //!      the block's base plane (all its vertices at the minimum of v.d);
 //!   3. no two blocks overlap (exact intersection volume <= 1e-6 of the smaller);
