@@ -11,6 +11,7 @@
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
 #include "subfab/hex/pillow_hex_mesh.h"
+#include "subfab/hex/raise_min_scaled_jacobian.h"
 #include "subfab/hex/scaled_jacobian.h"
 #include "subfab/hex/subdivide_hex_mesh.h"
 
@@ -249,6 +250,11 @@ HexMeshResult hexmesh(const Mesh& surface, const Skeleton* skeleton, const HexMe
     oo.targets = nullptr;
   }
   timer.lap("subdivide + project + optimise");
+  if (options.raise_min) {
+    StageScope stage(progress, "raise worst elements");
+    r.raise = raise_min_scaled_jacobian(mesh, surface, options.raise);
+  }
+  timer.lap("raise worst elements");
   {
     StageScope stage(progress, "measure");
     r.mesh = std::move(mesh);
