@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "hex/hex_corners.h"
 #include "hex/hex_topology.h"
 #include "hex/surface_projector.h"
 #include "subfab/hex/scaled_jacobian.h"
@@ -22,55 +23,38 @@ constexpr double kPatternBelow = 0.15;  // the pattern search (pure max-min, whi
 constexpr int kMovesPerVisit = 8;       // line searches per vertex visit
 constexpr double kSweepGain = 1e-4;     // a sweep that raises the minimum and the deficit less than this ends the passes
 constexpr double kMargin = 0.02;        // the last resort lifts the elements under this
-constexpr double kUntangle = 10.0;      // joint untangling: energy sum exp(-kUntangle x corner)
+constexpr double kUntangle = 10.0;       // joint untangling: energy sum exp(-kUntangle x corner)
 constexpr int kUntangleSteps = 500;     // joint untangling: at most this many steps
+//! The repairs the last resort tries in turn, each from the same start,
+//! until one lifts every element over kMargin (else the best is kept): the
+//! patch grown by `rings`, its inside reset by `laplacian` iterations first.
+struct Repair {
+  int rings;
+  int laplacian;
+};
+constexpr Repair kRepairs[] = {{1, 0}, {2, 30}, {3, 100}};
 constexpr double kMaxStep = 0.2;        // joint untangling: largest step of a vertex, fraction of its mean edge
 
-//! One affected corner: hexahedron and local corner index.
-struct Corner {
-  int hex;
-  int corner;
-};
+using detail::HexCorner;
 
 class Raiser {
  public:
   Raiser(HexMesh& mesh, const detail::SurfaceProjector& surface)
-      : mesh_(mesh), surface_(surface), topo_(detail::hex_topology(mesh)) {
-    corners_.resize(mesh.vertices.size());
-    for (std::size_t h = 0; h < mesh.hexes.size(); ++h) {
-      const Hex& hex = mesh.hexes[h];
-      for (int c = 0; c < 8; ++c) {
-        // corner c moves when its vertex or one of its three edge ends moves
-        corners_[idx(hex[idx(c)])].push_back({static_cast<int>(h), c});
-        for (int n : kHexCornerNeighbors[idx(c)]) corners_[idx(hex[idx(n)])].push_back({static_cast<int>(h), c});
-      }
-    }
+      : mesh_(mesh), surface_(surface), topo_(detail::hex_topology(mesh)), corners_(detail::vertex_corners(mesh)) {
     scale_.resize(mesh.vertices.size());
     for (std::size_t v = 0; v < mesh.vertices.size(); ++v) scale_[v] = edge_scale(v);
   }
 
   const detail::HexTopology& topology() const { return topo_; }
 
-  double corner_value(const Corner& k) const {
-    const Hex& hex = mesh_.hexes[idx(k.hex)];
-    const auto& n = kHexCornerNeighbors[idx(k.corner)];
-    const Vec3& p = mesh_.vertices[idx(hex[idx(k.corner)])];
-    Vec3 e[3];
-    for (std::size_t i = 0; i < 3; ++i) {
-      e[i] = mesh_.vertices[idx(hex[idx(n[i])])] - p;
-      const double len = e[i].norm();
-      if (!(len > 0)) return -1.0;
-      e[i] /= len;
-    }
-    return e[0].dot(e[1].cross(e[2]));
-  }
+  double corner_value(const HexCorner& k) const { return detail::corner_determinant(mesh_, k); }
 
   //! Smallest corner v affects, with v at p.
   double local_min(std::size_t v, const Vec3& p) {
     const Vec3 old = mesh_.vertices[v];
     mesh_.vertices[v] = p;
     double m = 1.0;
-    for (const Corner& k : corners_[v]) m = std::min(m, corner_value(k));
+    for (const HexCorner& k : corners_[v]) m = std::min(m, corner_value(k));
     mesh_.vertices[v] = old;
     return m;
   }
@@ -142,12 +126,14 @@ class Raiser {
   }
 
   //! Joint untangling of a patch: every vertex of `patch` moves at once
-  //! along the descent direction of sum exp(-kUntangle x corner) over the
-  //! corners the patch affects (each vertex's step scaled by its squared mean
+  //! along the descent direction (analytic gradient) of sum exp(-kUntangle x
+  //! corner) over the corners the patch affects (each vertex's step scaled by its squared mean
   //! edge, at most kMaxStep of it), backtracking on that sum; boundary vertices
   //! stay within their allowance of the surface. A coordinate-wise search
   //! stalls where two vertices must move together (a fold of the boundary at
   //! a thin rim); this does not. Returns the number of steps taken.
+  static double untangle_energy(double alpha) { return std::exp(-kUntangle * alpha); }
+  static double untangle_slope(double alpha) { return -kUntangle * std::exp(-kUntangle * alpha); }
   int untangle_patch(const std::vector<std::size_t>& patch, int iterations) {
     std::vector<char> in_patch(mesh_.vertices.size(), 0);
     for (std::size_t v : patch) in_patch[v] = 1;
@@ -159,12 +145,7 @@ class Raiser {
     auto total = [&] {
       double e = 0;
       for (int h : hexes)
-        for (int c = 0; c < 8; ++c) e += std::exp(-kUntangle * corner_value({h, c}));
-      return e;
-    };
-    auto vertex_energy = [&](std::size_t v) {
-      double e = 0;
-      for (const Corner& k : corners_[v]) e += std::exp(-kUntangle * corner_value(k));
+        for (int c = 0; c < 8; ++c) e += untangle_energy(corner_value({h, c}));
       return e;
     };
     double energy = total();
@@ -173,15 +154,10 @@ class Raiser {
     for (int it = 0; it < iterations; ++it) {
       for (std::size_t i = 0; i < patch.size(); ++i) {
         const std::size_t v = patch[i];
-        const Vec3 p = mesh_.vertices[v];
-        const double h = 1e-6 * scale_[v];
-        Vec3 g;
-        for (int a = 0; a < 3; ++a) {
-          mesh_.vertices[v][a] = p[a] + h;
-          const double up = vertex_energy(v);
-          mesh_.vertices[v][a] = p[a] - h;
-          g[a] = (up - vertex_energy(v)) / (2 * h);
-          mesh_.vertices[v][a] = p[a];
+        Vec3 g = Vec3::Zero(), dg;
+        for (const HexCorner& k : corners_[v]) {
+          const double alpha = detail::corner_determinant_gradient(mesh_, k, static_cast<int>(v), dg);
+          g += untangle_slope(alpha) * dg;
         }
         dir[i] = -scale_[v] * scale_[v] * g;
         if (const double len = dir[i].norm(); len > kMaxStep * scale_[v]) dir[i] *= kMaxStep * scale_[v] / len;
@@ -273,7 +249,7 @@ class Raiser {
   HexMesh& mesh_;
   const detail::SurfaceProjector& surface_;
   detail::HexTopology topo_;
-  std::vector<std::vector<Corner>> corners_;  // per vertex: the corners it affects
+  std::vector<std::vector<HexCorner>> corners_;  // per vertex: the corners it affects
   std::vector<double> scale_;                 // per vertex: mean edge length at the start
   std::vector<double> allowance_;             // per boundary vertex: how far it may be off the surface (last resort)
 };
@@ -318,6 +294,57 @@ int sweep(Raiser& raiser, HexMesh& mesh, double threshold, int max_sweeps, bool 
   return s;
 }
 
+//! The vertices of the hexahedra under the margin, grown by `rings` rings
+//! of edge neighbours, in index order; boundary vertices of the patch with no
+//! allowance yet may slide on the surface (allowance: their distance now).
+std::vector<std::size_t> repair_patch(Raiser& raiser, const HexMesh& mesh, const std::vector<double>& sj, int rings) {
+  const detail::HexTopology& topo = raiser.topology();
+  std::vector<char> in_patch(mesh.vertices.size(), 0);
+  for (std::size_t h = 0; h < sj.size(); ++h)
+    if (sj[h] <= kMargin)
+      for (int v : mesh.hexes[h]) in_patch[idx(v)] = 1;
+  for (int ring = 0; ring < rings; ++ring) {
+    std::vector<char> grown = in_patch;
+    for (std::size_t v = 0; v < in_patch.size(); ++v)
+      if (in_patch[v])
+        for (int w : topo.neighbors[v]) grown[idx(w)] = 1;
+    in_patch = std::move(grown);
+  }
+  std::vector<std::size_t> patch;
+  for (std::size_t v = 0; v < in_patch.size(); ++v)
+    if (in_patch[v]) {
+      patch.push_back(v);
+      if (topo.on_boundary[v] && raiser.allowance(v) == 0)
+        raiser.set_allowance(v, raiser.distance_to_surface(mesh.vertices[v]));
+    }
+  return patch;
+}
+
+//! Resets the inside of the patch (vertices off the surface whose
+//! neighbours are all in the patch) by Jacobi iterations of the mean of the
+//! neighbours: a star folded over (an interior vertex whose opposite
+//! neighbours ended on the same side, no position of its own valid) opens.
+void relax_patch_interior(const Raiser& raiser, HexMesh& mesh, const std::vector<std::size_t>& patch, int iterations) {
+  const detail::HexTopology& topo = raiser.topology();
+  std::vector<char> in_patch(mesh.vertices.size(), 0);
+  for (std::size_t v : patch) in_patch[v] = 1;
+  std::vector<std::size_t> inner;
+  for (std::size_t v : patch) {
+    bool all = !topo.on_boundary[v];
+    for (int w : topo.neighbors[v]) all = all && in_patch[idx(w)];
+    if (all) inner.push_back(v);
+  }
+  for (int it = 0; it < iterations; ++it) {
+    std::vector<Vec3> next(inner.size());
+    for (std::size_t i = 0; i < inner.size(); ++i) {
+      Vec3 c = Vec3::Zero();
+      for (int w : topo.neighbors[inner[i]]) c += mesh.vertices[idx(w)];
+      next[i] = c / static_cast<double>(topo.neighbors[inner[i]].size());
+    }
+    for (std::size_t i = 0; i < inner.size(); ++i) mesh.vertices[inner[i]] = next[i];
+  }
+}
+
 }  // namespace
 
 RaiseMinScaledJacobianReport raise_min_scaled_jacobian(HexMesh& mesh, const Mesh& surface,
@@ -332,9 +359,9 @@ RaiseMinScaledJacobianReport raise_min_scaled_jacobian(HexMesh& mesh, const Mesh
   report.sweeps = sweep(raiser, mesh, options.threshold, options.sweeps, false,
                         [](std::size_t, double) { return true; }, report.num_moves);
   sj = scaled_jacobians(mesh);
-  if (options.free_boundary_for_inverted && count_inverted(sj) > 0) {
-    // last resort: the boundary vertices of inverted hexahedra may leave the
-    // surface (a vertex already off it keeps at least its distance)
+  if (options.free_boundary_for_inverted && min_of(sj) <= kMargin) {
+    // last resort: the boundary vertices of the hexahedra under the margin
+    // may leave the surface (a vertex already off it keeps its distance)
     const detail::HexTopology& topo = raiser.topology();
     for (std::size_t h = 0; h < sj.size(); ++h)
       if (sj[h] <= kMargin)
@@ -343,34 +370,23 @@ RaiseMinScaledJacobianReport raise_min_scaled_jacobian(HexMesh& mesh, const Mesh
             raiser.set_allowance(idx(v), std::max(options.max_off_surface * raiser.scale(idx(v)),
                                                   raiser.distance_to_surface(mesh.vertices[idx(v)])));
     const std::vector<Vec3> kept = mesh.vertices;
-    const double before = min_of(sj);
-    // the patch: the vertices of the hexahedra under the margin and their
-    // edge neighbours, moved together
-    std::vector<char> in_patch(mesh.vertices.size(), 0);
-    for (std::size_t h = 0; h < sj.size(); ++h)
-      if (sj[h] <= kMargin)
-        for (int v : mesh.hexes[h]) {
-          in_patch[idx(v)] = 1;
-          for (int w : topo.neighbors[idx(v)]) in_patch[idx(w)] = 1;
-        }
-    std::vector<std::size_t> patch;
-    for (std::size_t v = 0; v < in_patch.size(); ++v)
-      if (in_patch[v]) {
-        patch.push_back(v);
-        if (topo.on_boundary[v] && raiser.allowance(v) == 0)
-          raiser.set_allowance(v, raiser.distance_to_surface(mesh.vertices[v]));
-      }
-    report.untangle_steps = raiser.untangle_patch(patch, kUntangleSteps);
-    report.sweeps += sweep(raiser, mesh, kMargin, options.sweeps, true,
-                           [](std::size_t, double) { return true; }, report.num_moves);
-    sj = scaled_jacobians(mesh);
-    if (min_of(sj) <= before) {
+    std::vector<Vec3> best = kept;
+    double best_min = min_of(sj);
+    for (const Repair& repair : kRepairs) {
       mesh.vertices = kept;
-      sj = scaled_jacobians(mesh);
-    } else {
-      for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
-        if (topo.on_boundary[v] && (mesh.vertices[v] - kept[v]).squaredNorm() > 0) ++report.num_off_surface;
+      const std::vector<std::size_t> patch = repair_patch(raiser, mesh, sj, repair.rings);
+      if (repair.laplacian > 0) relax_patch_interior(raiser, mesh, patch, repair.laplacian);
+      report.untangle_steps += raiser.untangle_patch(patch, kUntangleSteps);
+      report.sweeps += sweep(raiser, mesh, kMargin, options.sweeps, true,
+                             [](std::size_t, double) { return true; }, report.num_moves);
+      const double now = min_of(scaled_jacobians(mesh));
+      if (now > best_min) best_min = now, best = mesh.vertices;
+      if (best_min > kMargin) break;
     }
+    mesh.vertices = std::move(best);
+    sj = scaled_jacobians(mesh);
+    for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
+      if (topo.on_boundary[v] && (mesh.vertices[v] - kept[v]).squaredNorm() > 0) ++report.num_off_surface;
   }
   report.min_after = min_of(sj);
   report.num_inverted_after = count_inverted(sj);
