@@ -388,6 +388,11 @@ RaiseMinScaledJacobianReport raise_min_scaled_jacobian(HexMesh& mesh, const Mesh
     for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
       if (topo.on_boundary[v] && (mesh.vertices[v] - kept[v]).squaredNorm() > 0) ++report.num_off_surface;
   }
+  if (options.quality_sweeps > 0) {
+    report.sweeps += sweep(raiser, mesh, options.quality_threshold, options.quality_sweeps, false,
+                           [](std::size_t, double) { return true; }, report.num_moves);
+    sj = scaled_jacobians(mesh);
+  }
   report.min_after = min_of(sj);
   report.num_inverted_after = count_inverted(sj);
   return report;
