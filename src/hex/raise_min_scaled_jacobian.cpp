@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "hex/hex_corners.h"
+#include "hex/hex_optimizers.h"
 #include "hex/hex_topology.h"
 #include "hex/surface_projector.h"
 #include "subfab/hex/scaled_jacobian.h"
@@ -349,8 +350,13 @@ void relax_patch_interior(const Raiser& raiser, HexMesh& mesh, const std::vector
 
 RaiseMinScaledJacobianReport raise_min_scaled_jacobian(HexMesh& mesh, const Mesh& surface,
                                                        const RaiseMinScaledJacobianOptions& options) {
-  RaiseMinScaledJacobianReport report;
   const detail::SurfaceProjector projector(surface);
+  return detail::raise_min_scaled_jacobian(mesh, projector, options);
+}
+
+RaiseMinScaledJacobianReport detail::raise_min_scaled_jacobian(HexMesh& mesh, const SurfaceProjector& projector,
+                                                               const RaiseMinScaledJacobianOptions& options) {
+  RaiseMinScaledJacobianReport report;
   Raiser raiser(mesh, projector);
   raiser.init_allowance();
   std::vector<double> sj = scaled_jacobians(mesh);
