@@ -309,7 +309,7 @@ OptimizeHexMeshReport detail::optimize_hex_mesh(HexMesh& mesh, const SurfaceProj
                                                 const OptimizeHexMeshOptions& options) {
   OptimizeHexMeshReport report;
   const detail::HexTopology topo = detail::hex_topology(mesh);
-  Optimizer opt{mesh, topo, projector, {}, {}};
+  Optimizer opt{mesh, topo, projector, {}, {}, {}, {}};
   opt.target.assign(mesh.vertices.size(), Vec3::Zero());
   opt.on_surface.assign(mesh.vertices.size(), 0);
   opt.origin = mesh.vertices;
