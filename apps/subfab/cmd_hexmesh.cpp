@@ -64,6 +64,11 @@ nlohmann::ordered_json to_json(const HexmeshArgs& args, const Mesh& input, const
   }
   j["scaled_jacobian_histogram"] = hist;
   j["inverted"] = r.histogram[0];
+  j["final_pass"] = {{"min_before", r.raise.min_before},
+                     {"inverted_before", r.raise.num_inverted_before},
+                     {"moves", r.raise.num_moves},
+                     {"untangle_steps", r.raise.untangle_steps},
+                     {"boundary_vertices_off_surface", r.raise.num_off_surface}};
   j["diagonal"] = r.diagonal;
   j["mean_distance_fraction"] = r.diagonal > 0 ? r.mean_distance / r.diagonal : 0.0;
   j["max_distance_fraction"] = r.diagonal > 0 ? r.max_distance / r.diagonal : 0.0;

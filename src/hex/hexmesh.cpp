@@ -6,11 +6,13 @@
 #include <cmath>
 
 #include "geometry/hausdorff_distance.h"
+#include "hex/hex_optimizers.h"
 #include "hex/hex_topology.h"
 #include "hex/surface_projector.h"
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
 #include "subfab/hex/pillow_hex_mesh.h"
+#include "subfab/hex/raise_min_scaled_jacobian.h"
 #include "subfab/hex/scaled_jacobian.h"
 #include "subfab/hex/subdivide_hex_mesh.h"
 
@@ -233,7 +235,7 @@ HexMeshResult hexmesh(const Mesh& surface, const Skeleton* skeleton, const HexMe
   oo.progress = progress;
   const bool smooth = oo.smooth;
   oo.smooth = smooth && r.subdivisions == 0;  // smoothing a coarse level drags the core to the surface
-  r.optimize = optimize_hex_mesh(mesh, surface, oo);
+  r.optimize = detail::optimize_hex_mesh(mesh, projector, oo);
   for (int i = 0; i < r.subdivisions; ++i) {
     oo.smooth = smooth && i + 1 == r.subdivisions;
     std::vector<Vec3> targets;
@@ -244,11 +246,16 @@ HexMeshResult hexmesh(const Mesh& surface, const Skeleton* skeleton, const HexMe
     }
     oo.targets = &targets;
     const double first_min = r.optimize.min_before;
-    r.optimize = optimize_hex_mesh(mesh, surface, oo);
+    r.optimize = detail::optimize_hex_mesh(mesh, projector, oo);
     r.optimize.min_before = std::min(first_min, r.optimize.min_before);
     oo.targets = nullptr;
   }
   timer.lap("subdivide + project + optimise");
+  if (options.raise_min) {
+    StageScope stage(progress, "raise worst elements");
+    r.raise = detail::raise_min_scaled_jacobian(mesh, projector, options.raise);
+  }
+  timer.lap("raise worst elements");
   {
     StageScope stage(progress, "measure");
     r.mesh = std::move(mesh);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "hex/hex_optimizers.h"
 #include "hex/hex_topology.h"
 #include "hex/surface_projector.h"
 #include "subfab/core/error.h"
@@ -300,10 +301,15 @@ int run_passes(Optimizer& opt, const OptimizeHexMeshOptions& options, double thr
 }  // namespace
 
 OptimizeHexMeshReport optimize_hex_mesh(HexMesh& mesh, const Mesh& surface, const OptimizeHexMeshOptions& options) {
+  const detail::SurfaceProjector projector(surface);
+  return detail::optimize_hex_mesh(mesh, projector, options);
+}
+
+OptimizeHexMeshReport detail::optimize_hex_mesh(HexMesh& mesh, const SurfaceProjector& projector,
+                                                const OptimizeHexMeshOptions& options) {
   OptimizeHexMeshReport report;
   const detail::HexTopology topo = detail::hex_topology(mesh);
-  const detail::SurfaceProjector projector(surface);
-  Optimizer opt{mesh, topo, projector, {}, {}};
+  Optimizer opt{mesh, topo, projector, {}, {}, {}, {}};
   opt.target.assign(mesh.vertices.size(), Vec3::Zero());
   opt.on_surface.assign(mesh.vertices.size(), 0);
   opt.origin = mesh.vertices;

@@ -33,12 +33,26 @@ bool spheres_apart(const Polyline& line, double a, double b) {
   return (pa - pm).norm() > ra + rm || (pm - pb).norm() > rm + rb;
 }
 
-void split(const Polyline& line, double a, double b, int depth, bool force, std::vector<double>& out) {
-  if (depth <= 0 || (!force && !spheres_apart(line, a, b))) return;
+//! A neck between the samples: a node of the polyline strictly inside
+//! (a, b) whose radius is under kNeck x the smaller end radius.
+bool neck_inside(const Polyline& line, double a, double b, double neck) {
+  if (!(neck > 0)) return false;
+  Vec3 p;
+  double ra, rb;
+  line.at(a, p, ra);
+  line.at(b, p, rb);
+  const double limit = neck * std::min(ra, rb);
+  for (std::size_t i = 0; i < line.t.size(); ++i)
+    if (line.t[i] > a && line.t[i] < b && line.radii[i] < limit) return true;
+  return false;
+}
+
+void split(const Polyline& line, double a, double b, int depth, bool force, double neck, std::vector<double>& out) {
+  if (depth <= 0 || (!force && !spheres_apart(line, a, b) && !neck_inside(line, a, b, neck))) return;
   const double m = 0.5 * (a + b);
-  split(line, a, m, depth - 1, false, out);
+  split(line, a, m, depth - 1, false, neck, out);
   out.push_back(m);
-  split(line, m, b, depth - 1, false, out);
+  split(line, m, b, depth - 1, false, neck, out);
 }
 
 }  // namespace
@@ -64,13 +78,13 @@ Skeleton resample_skeleton(const Skeleton& skeleton, const ResampleSkeletonOptio
     std::vector<double> samples;
     if (arc.closed) {  // at least two inner nodes: a cycle of three or more
       const double third = 1.0 / 3.0;
-      split(line, 0, third, options.max_depth, false, samples);
+      split(line, 0, third, options.max_depth, false, options.neck_ratio, samples);
       samples.push_back(third);
-      split(line, third, 2 * third, options.max_depth, false, samples);
+      split(line, third, 2 * third, options.max_depth, false, options.neck_ratio, samples);
       samples.push_back(2 * third);
-      split(line, 2 * third, 1, options.max_depth, false, samples);
+      split(line, 2 * third, 1, options.max_depth, false, options.neck_ratio, samples);
     } else {
-      split(line, 0, 1, options.max_depth, true, samples);
+      split(line, 0, 1, options.max_depth, true, options.neck_ratio, samples);
     }
     int first = new_index[static_cast<std::size_t>(arc.nodes.front())];
     if (first < 0) {  // closed cycle: its start node is of degree 2

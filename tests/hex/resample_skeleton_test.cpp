@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "support/hex_test_shapes.h"
 
 namespace subfab {
@@ -20,6 +22,24 @@ TEST(ResampleSkeleton, ThinTubeIsSplitUntilSpheresOverlap) {
   for (std::size_t i = 1; i < arcs[0].nodes.size(); ++i)
     EXPECT_NEAR((r.points[static_cast<std::size_t>(arcs[0].nodes[i])] -
                  r.points[static_cast<std::size_t>(arcs[0].nodes[i - 1])]).norm(), 2.0, 1e-12);
+}
+
+TEST(ResampleSkeleton, NeckBetweenSamplesIsSplitOnlyWhenAsked) {
+  // a thick tube (radius 5, length 2: one inner node by D.4) with a neck of
+  // radius 0.5 at x = 0.5 (21 nodes from -1 to 1, node 15 at 0.5)
+  Skeleton s = test::line_skeleton(21, 1.0, 5.0);
+  s.radii[15] = 0.5;
+  EXPECT_EQ(resample_skeleton(s).num_nodes(), 3u);  // default: the thesis's criterion only
+  ResampleSkeletonOptions options;
+  options.neck_ratio = 0.6;
+  const Skeleton r = resample_skeleton(s, options);
+  // [0, 1] is split at 0.5 (forced), then [0.5, 1] (x in [0, 1]) holds the
+  // neck node strictly inside: split at x = 0.5, its ends then have radius
+  // ~0.5, so it stops
+  ASSERT_EQ(r.num_nodes(), 4u);
+  bool at_neck = false;
+  for (std::size_t v = 0; v < r.num_nodes(); ++v) at_neck = at_neck || std::abs(r.points[v].x() - 0.5) < 1e-9;
+  EXPECT_TRUE(at_neck);
 }
 
 TEST(ResampleSkeleton, ThickTubeKeepsOneInnerNode) {

@@ -21,7 +21,10 @@
 //!      along its padding edge, optimize_hex_mesh() again, which moves the
 //!      boundary there in steps that keep the elements valid (smoothing on
 //!      the last level);
-//!   6. measures: conformity, scaled Jacobians, distance to the input.
+//!   6. raise_min_scaled_jacobian() on the final level: local optimisation of
+//!      the worst elements, boundary sliding on the surface; elements still
+//!      inverted are untangled jointly, their boundary free near the surface;
+//!   7. measures: conformity, scaled Jacobians, distance to the input.
 //! Not done yet: resolution control (D.5, cones and the integer programme).
 #pragma once
 
@@ -36,6 +39,7 @@
 #include "subfab/hex/compute_skeleton.h"
 #include "subfab/hex/hex_mesh.h"
 #include "subfab/hex/optimize_hex_mesh.h"
+#include "subfab/hex/raise_min_scaled_jacobian.h"
 #include "subfab/hex/resample_skeleton.h"
 #include "subfab/hex/skeleton.h"
 
@@ -48,6 +52,8 @@ struct HexMeshOptions {
   int subdivisions = -1;             // regular splits after pillowing; -1: the most that keeps <= max_hexes
   std::size_t max_hexes = 20000;     // bound for the automatic choice (at least one split is always made)
   OptimizeHexMeshOptions optimize;
+  bool raise_min = true;             // run raise_min_scaled_jacobian() on the final level
+  RaiseMinScaledJacobianOptions raise;
   Progress* progress = nullptr;
 };
 
@@ -65,6 +71,7 @@ struct HexMeshResult {
   double diagonal = 0;                      // of the input's bounding box
   double mean_distance = 0, max_distance = 0;  // boundary vs input, model units (see hexmesh.cpp)
   OptimizeHexMeshReport optimize;
+  RaiseMinScaledJacobianReport raise;
   std::vector<std::pair<std::string, double>> timings;  // seconds per stage
 };
 

@@ -1,0 +1,62 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "hex/hex_corners.h"
+
+#include "subfab/hex/scaled_jacobian.h"
+
+namespace subfab::detail {
+namespace {
+std::size_t idx(int v) { return static_cast<std::size_t>(v); }
+}  // namespace
+
+std::vector<std::vector<HexCorner>> vertex_corners(const HexMesh& mesh) {
+  std::vector<std::vector<HexCorner>> out(mesh.vertices.size());
+  for (std::size_t h = 0; h < mesh.hexes.size(); ++h) {
+    const Hex& hex = mesh.hexes[h];
+    for (int c = 0; c < 8; ++c) {
+      out[idx(hex[idx(c)])].push_back({static_cast<int>(h), c});
+      for (int n : kHexCornerNeighbors[idx(c)]) out[idx(hex[idx(n)])].push_back({static_cast<int>(h), c});
+    }
+  }
+  return out;
+}
+
+double corner_determinant(const HexMesh& mesh, const HexCorner& k) {
+  const Hex& hex = mesh.hexes[idx(k.hex)];
+  const auto& n = kHexCornerNeighbors[idx(k.corner)];
+  const Vec3& p = mesh.vertices[idx(hex[idx(k.corner)])];
+  Vec3 e[3];
+  for (std::size_t i = 0; i < 3; ++i) {
+    e[i] = mesh.vertices[idx(hex[idx(n[i])])] - p;
+    const double len = e[i].norm();
+    if (!(len > 0)) return -1.0;
+    e[i] /= len;
+  }
+  return e[0].dot(e[1].cross(e[2]));
+}
+
+double corner_determinant_gradient(const HexMesh& mesh, const HexCorner& k, int v, Vec3& gradient) {
+  const Hex& hex = mesh.hexes[idx(k.hex)];
+  const auto& n = kHexCornerNeighbors[idx(k.corner)];
+  const Vec3& p = mesh.vertices[idx(hex[idx(k.corner)])];
+  Vec3 e[3];
+  double len[3];
+  gradient = Vec3::Zero();
+  for (std::size_t i = 0; i < 3; ++i) {
+    e[i] = mesh.vertices[idx(hex[idx(n[i])])] - p;
+    len[i] = e[i].norm();
+    if (!(len[i] > 0)) return -1.0;
+    e[i] /= len[i];
+  }
+  // d det / d e_i = e_j x e_k; d e_i / d (far end of edge i) = (I - e_i e_i^T) / len_i
+  Vec3 g[3];
+  for (std::size_t i = 0; i < 3; ++i) {
+    const Vec3 c = e[(i + 1) % 3].cross(e[(i + 2) % 3]);
+    g[i] = (c - e[i] * e[i].dot(c)) / len[i];
+  }
+  for (std::size_t i = 0; i < 3; ++i)
+    if (hex[idx(n[i])] == v) gradient += g[i];
+  if (hex[idx(k.corner)] == v) gradient -= g[0] + g[1] + g[2];
+  return e[0].dot(e[1].cross(e[2]));
+}
+
+}  // namespace subfab::detail

@@ -1,0 +1,20 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file hex_optimizers.h
+//! Private: optimize_hex_mesh() and raise_min_scaled_jacobian() on a surface
+//! whose projector (AABB tree and exact inside test) is already built, so
+//! that hexmesh() builds it once instead of once per level.
+#pragma once
+
+#include "hex/surface_projector.h"
+#include "subfab/hex/optimize_hex_mesh.h"
+#include "subfab/hex/raise_min_scaled_jacobian.h"
+
+namespace subfab::detail {
+
+OptimizeHexMeshReport optimize_hex_mesh(HexMesh& mesh, const SurfaceProjector& surface,
+                                        const OptimizeHexMeshOptions& options);
+
+RaiseMinScaledJacobianReport raise_min_scaled_jacobian(HexMesh& mesh, const SurfaceProjector& surface,
+                                                       const RaiseMinScaledJacobianOptions& options);
+
+}  // namespace subfab::detail

@@ -1,0 +1,407 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "subfab/hex/raise_min_scaled_jacobian.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+#include <vector>
+
+#include "hex/hex_corners.h"
+#include "hex/hex_optimizers.h"
+#include "hex/hex_topology.h"
+#include "hex/surface_projector.h"
+#include "subfab/hex/scaled_jacobian.h"
+
+namespace subfab {
+namespace {
+
+std::size_t idx(int v) { return static_cast<std::size_t>(v); }
+
+constexpr double kSharpness = 8.0;      // energy of a vertex: sum over its hexahedra of exp(-kSharpness (q - q_min)) ...
+constexpr double kLinear = 1.0;         // ... minus kLinear x q: the average counts too
+constexpr double kGain = 1e-9;          // the pattern search must raise the smallest corner by this much
+constexpr double kPatternBelow = 0.15;  // the pattern search (pure max-min, which can sacrifice good corners) runs under this
+constexpr int kMovesPerVisit = 8;       // line searches per vertex visit
+constexpr double kSweepGain = 1e-4;     // a sweep that raises the minimum and the deficit less than this ends the passes
+constexpr double kMargin = 0.02;        // the last resort lifts the elements under this
+constexpr double kUntangle = 10.0;       // joint untangling: energy sum exp(-kUntangle x corner)
+constexpr int kUntangleSteps = 500;     // joint untangling: at most this many steps
+//! The repairs the last resort tries in turn, each from the same start,
+//! until one lifts every element over kMargin (else the best is kept): the
+//! patch grown by `rings`, its inside reset by `laplacian` iterations first.
+struct Repair {
+  int rings;
+  int laplacian;
+};
+constexpr Repair kRepairs[] = {{1, 0}, {2, 30}, {3, 100}};
+constexpr double kMaxStep = 0.2;        // joint untangling: largest step of a vertex, fraction of its mean edge
+
+using detail::HexCorner;
+
+class Raiser {
+ public:
+  Raiser(HexMesh& mesh, const detail::SurfaceProjector& surface)
+      : mesh_(mesh), surface_(surface), topo_(detail::hex_topology(mesh)), corners_(detail::vertex_corners(mesh)) {
+    scale_.resize(mesh.vertices.size());
+    for (std::size_t v = 0; v < mesh.vertices.size(); ++v) scale_[v] = edge_scale(v);
+  }
+
+  const detail::HexTopology& topology() const { return topo_; }
+
+  double corner_value(const HexCorner& k) const { return detail::corner_determinant(mesh_, k); }
+
+  //! Smallest corner v affects, with v at p.
+  double local_min(std::size_t v, const Vec3& p) {
+    const Vec3 old = mesh_.vertices[v];
+    mesh_.vertices[v] = p;
+    double m = 1.0;
+    for (const HexCorner& k : corners_[v]) m = std::min(m, corner_value(k));
+    mesh_.vertices[v] = old;
+    return m;
+  }
+  double soft_energy(std::size_t v, const Vec3& p, double shift) {
+    const Vec3 old = mesh_.vertices[v];
+    mesh_.vertices[v] = p;
+    double e = 0;
+    for (int h : topo_.vertex_hexes[v]) {
+      const double q = scaled_jacobian(mesh_, idx(h));
+      e += std::exp(-kSharpness * (q - shift)) - kLinear * q;
+    }
+    mesh_.vertices[v] = old;
+    return e;
+  }
+
+  double distance_to_surface(const Vec3& p) const { return (surface_.closest_point(p) - p).norm(); }
+
+  //! Where a step from v's position to q really goes (a boundary vertex on
+  //! the surface is put back onto it), and whether it is allowed there.
+  bool place(std::size_t v, const Vec3& q, bool free_boundary, Vec3& out) const {
+    if (!topo_.on_boundary[v]) {
+      out = q;
+      return true;
+    }
+    const Vec3 onto = surface_.closest_point(q);
+    if (!free_boundary) {
+      out = onto;
+      return true;
+    }
+    const double d = (onto - q).norm();
+    if (d > allowance_[v]) return false;
+    out = q;
+    return true;
+  }
+
+  //! Visits v: line searches along the descent direction of the soft-min
+  //! of its affected corners (a step must lower the soft-min energy and keep
+  //! the smallest corner), then, when that stalls, a pattern search that
+  //! raises the smallest corner. Returns the number of accepted moves.
+  std::size_t visit(std::size_t v, bool free_boundary) {
+    const double scale = scale_[v];
+    if (!(scale > 0)) return 0;
+    std::size_t moves = 0;
+    Score current = score(v, mesh_.vertices[v], local_min(v, mesh_.vertices[v]));
+    const bool slides = topo_.on_boundary[v] && !free_boundary;
+    for (int it = 0; it < kMovesPerVisit; ++it) {
+      const Vec3 p = mesh_.vertices[v];
+      const double shift = current.min;
+      current = score(v, p, shift);
+      const double h = 1e-5 * scale;
+      Vec3 grad;
+      for (int a = 0; a < 3; ++a) {
+        Vec3 d = Vec3::Zero();
+        d[a] = h;
+        grad[a] = (soft_energy(v, p + d, shift) - soft_energy(v, p - d, shift)) / (2 * h);
+      }
+      if (slides) {
+        Vec3 normal;
+        surface_.closest_point(p, &normal);
+        grad -= grad.dot(normal) * normal;
+      }
+      bool moved = false;
+      if (const double g = grad.norm(); g > 0) moved = line_search(v, -grad / g, scale, free_boundary, shift, current);
+      if (!moved && current.min < kPatternBelow) moved = pattern_search(v, scale, free_boundary, shift, current);
+      if (!moved) break;
+      ++moves;
+    }
+    return moves;
+  }
+
+  //! Joint untangling of a patch: every vertex of `patch` moves at once
+  //! along the descent direction (analytic gradient) of sum exp(-kUntangle x
+  //! corner) over the corners the patch affects (each vertex's step scaled by its squared mean
+  //! edge, at most kMaxStep of it), backtracking on that sum; boundary vertices
+  //! stay within their allowance of the surface. A coordinate-wise search
+  //! stalls where two vertices must move together (a fold of the boundary at
+  //! a thin rim); this does not. Returns the number of steps taken.
+  static double untangle_energy(double alpha) { return std::exp(-kUntangle * alpha); }
+  static double untangle_slope(double alpha) { return -kUntangle * std::exp(-kUntangle * alpha); }
+  int untangle_patch(const std::vector<std::size_t>& patch, int iterations) {
+    std::vector<char> in_patch(mesh_.vertices.size(), 0);
+    for (std::size_t v : patch) in_patch[v] = 1;
+    // the hexahedra whose corners move
+    std::vector<int> hexes;
+    for (std::size_t v : patch) hexes.insert(hexes.end(), topo_.vertex_hexes[v].begin(), topo_.vertex_hexes[v].end());
+    std::sort(hexes.begin(), hexes.end());
+    hexes.erase(std::unique(hexes.begin(), hexes.end()), hexes.end());
+    auto total = [&] {
+      double e = 0;
+      for (int h : hexes)
+        for (int c = 0; c < 8; ++c) e += untangle_energy(corner_value({h, c}));
+      return e;
+    };
+    double energy = total();
+    int steps = 0;
+    std::vector<Vec3> dir(patch.size());
+    for (int it = 0; it < iterations; ++it) {
+      for (std::size_t i = 0; i < patch.size(); ++i) {
+        const std::size_t v = patch[i];
+        Vec3 g = Vec3::Zero(), dg;
+        for (const HexCorner& k : corners_[v]) {
+          const double alpha = detail::corner_determinant_gradient(mesh_, k, static_cast<int>(v), dg);
+          g += untangle_slope(alpha) * dg;
+        }
+        dir[i] = -scale_[v] * scale_[v] * g;
+        if (const double len = dir[i].norm(); len > kMaxStep * scale_[v]) dir[i] *= kMaxStep * scale_[v] / len;
+      }
+      const std::vector<Vec3> start = mesh_.vertices;
+      bool moved = false;
+      for (double t = 1.0; t > 1e-4; t *= 0.5) {
+        for (std::size_t i = 0; i < patch.size(); ++i) {
+          const std::size_t v = patch[i];
+          Vec3 q = start[v] + t * dir[i];
+          if (topo_.on_boundary[v]) {  // within its allowance of the surface
+            const Vec3 c = surface_.closest_point(q);
+            const double d = (q - c).norm();
+            if (d > allowance_[v]) q = c + (allowance_[v] / d) * (q - c);
+          }
+          mesh_.vertices[v] = q;
+        }
+        const double e = total();
+        if (e < energy * (1 - 1e-9)) {
+          energy = e;
+          moved = true;
+          break;
+        }
+        for (std::size_t v : patch) mesh_.vertices[v] = start[v];
+      }
+      if (!moved) break;
+      ++steps;
+    }
+    return steps;
+  }
+
+  void set_allowance(std::size_t v, double a) { allowance_[v] = a; }
+  double allowance(std::size_t v) const { return allowance_[v]; }
+  void init_allowance() { allowance_.assign(mesh_.vertices.size(), 0.0); }
+  double scale(std::size_t v) const { return scale_[v]; }
+
+ private:
+  struct Score {
+    double min;     // smallest affected corner
+    double energy;  // soft-min energy of the affected corners
+  };
+  Score score(std::size_t v, const Vec3& p, double shift) {
+    return {local_min(v, p), soft_energy(v, p, shift)};
+  }
+  //! Moves v to (the placement of) q if that raises its smallest corner, or,
+  //! with `smooth`, lowers the soft-min energy without lowering it.
+  bool try_move(std::size_t v, const Vec3& q, bool free_boundary, double shift, bool smooth, Score& current) {
+    Vec3 to;
+    if (!place(v, q, free_boundary, to)) return false;
+    const double m = local_min(v, to);
+    if (m < current.min) return false;
+    double e = current.energy;
+    if (smooth) {  // lower the energy, keeping the smallest corner
+      e = soft_energy(v, to, shift);
+      if (!(e < current.energy - 1e-12 * std::abs(current.energy))) return false;
+    } else if (!(m > current.min + kGain)) {  // raise the smallest corner
+      return false;
+    } else {
+      e = soft_energy(v, to, shift);
+    }
+    mesh_.vertices[v] = to;
+    current = {m, e};
+    return true;
+  }
+  bool line_search(std::size_t v, const Vec3& dir, double scale, bool free_boundary, double shift, Score& current) {
+    const Vec3 p = mesh_.vertices[v];
+    double step = 0.25 * scale;
+    for (int k = 0; k < 14; ++k, step *= 0.5)
+      if (try_move(v, p + step * dir, free_boundary, shift, true, current)) return true;
+    return false;
+  }
+  bool pattern_search(std::size_t v, double scale, bool free_boundary, double shift, Score& current) {
+    const Vec3 p = mesh_.vertices[v];
+    for (double step = 0.1 * scale; step > 1e-4 * scale; step *= 0.25)
+      for (int d = 0; d < 14; ++d) {
+        Vec3 dir = Vec3::Zero();
+        if (d < 6) dir[d / 2] = d % 2 ? -1.0 : 1.0;
+        else dir = Vec3((d - 6) & 1 ? -1.0 : 1.0, (d - 6) & 2 ? -1.0 : 1.0, (d - 6) & 4 ? -1.0 : 1.0) / std::sqrt(3.0);
+        if (try_move(v, p + step * dir, free_boundary, shift, false, current)) return true;
+      }
+    return false;
+  }
+  double edge_scale(std::size_t v) const {
+    double s = 0;
+    for (int w : topo_.neighbors[v]) s += (mesh_.vertices[idx(w)] - mesh_.vertices[v]).norm();
+    return s / static_cast<double>(std::max<std::size_t>(1, topo_.neighbors[v].size()));
+  }
+
+  HexMesh& mesh_;
+  const detail::SurfaceProjector& surface_;
+  detail::HexTopology topo_;
+  std::vector<std::vector<HexCorner>> corners_;  // per vertex: the corners it affects
+  std::vector<double> scale_;                 // per vertex: mean edge length at the start
+  std::vector<double> allowance_;             // per boundary vertex: how far it may be off the surface (last resort)
+};
+
+double min_of(const std::vector<double>& sj) { return sj.empty() ? 1.0 : *std::min_element(sj.begin(), sj.end()); }
+
+std::size_t count_inverted(const std::vector<double>& sj) {
+  return static_cast<std::size_t>(std::count_if(sj.begin(), sj.end(), [](double q) { return q <= 0; }));
+}
+
+//! Sweeps over the vertices of the hexahedra under `threshold` (of those
+//! that `select` accepts), worst first. Returns the number of sweeps.
+template <class Select>
+int sweep(Raiser& raiser, HexMesh& mesh, double threshold, int max_sweeps, bool free_boundary, Select select,
+          std::size_t& moves) {
+  double last_min = min_of(scaled_jacobians(mesh));
+  int s = 0;
+  while (s < max_sweeps) {
+    ++s;
+    const std::vector<double> sj = scaled_jacobians(mesh);
+    std::vector<double> worst(mesh.vertices.size(), 2.0);
+    double deficit_before = 0;
+    for (std::size_t h = 0; h < sj.size(); ++h)
+      if (sj[h] < threshold && select(h, sj[h])) {
+        deficit_before += threshold - sj[h];
+        for (int v : mesh.hexes[h]) worst[idx(v)] = std::min(worst[idx(v)], sj[h]);
+      }
+    std::vector<std::pair<double, std::size_t>> order;
+    for (std::size_t v = 0; v < worst.size(); ++v)
+      if (worst[v] < 2.0) order.emplace_back(worst[v], v);
+    if (order.empty()) break;
+    std::sort(order.begin(), order.end());
+    for (const auto& [q, v] : order) moves += raiser.visit(v, free_boundary);
+    const std::vector<double> after = scaled_jacobians(mesh);
+    double deficit_after = 0;
+    for (double q : after) deficit_after += std::max(0.0, threshold - q);
+    const double now = min_of(after);
+    const bool gained = now > last_min + kSweepGain || deficit_after < deficit_before - kSweepGain;
+    last_min = now;
+    if (!gained) break;
+  }
+  return s;
+}
+
+//! The vertices of the hexahedra under the margin, grown by `rings` rings
+//! of edge neighbours, in index order; boundary vertices of the patch with no
+//! allowance yet may slide on the surface (allowance: their distance now).
+std::vector<std::size_t> repair_patch(Raiser& raiser, const HexMesh& mesh, const std::vector<double>& sj, int rings) {
+  const detail::HexTopology& topo = raiser.topology();
+  std::vector<char> in_patch(mesh.vertices.size(), 0);
+  for (std::size_t h = 0; h < sj.size(); ++h)
+    if (sj[h] <= kMargin)
+      for (int v : mesh.hexes[h]) in_patch[idx(v)] = 1;
+  for (int ring = 0; ring < rings; ++ring) {
+    std::vector<char> grown = in_patch;
+    for (std::size_t v = 0; v < in_patch.size(); ++v)
+      if (in_patch[v])
+        for (int w : topo.neighbors[v]) grown[idx(w)] = 1;
+    in_patch = std::move(grown);
+  }
+  std::vector<std::size_t> patch;
+  for (std::size_t v = 0; v < in_patch.size(); ++v)
+    if (in_patch[v]) {
+      patch.push_back(v);
+      if (topo.on_boundary[v] && raiser.allowance(v) == 0)
+        raiser.set_allowance(v, raiser.distance_to_surface(mesh.vertices[v]));
+    }
+  return patch;
+}
+
+//! Resets the inside of the patch (vertices off the surface whose
+//! neighbours are all in the patch) by Jacobi iterations of the mean of the
+//! neighbours: a star folded over (an interior vertex whose opposite
+//! neighbours ended on the same side, no position of its own valid) opens.
+void relax_patch_interior(const Raiser& raiser, HexMesh& mesh, const std::vector<std::size_t>& patch, int iterations) {
+  const detail::HexTopology& topo = raiser.topology();
+  std::vector<char> in_patch(mesh.vertices.size(), 0);
+  for (std::size_t v : patch) in_patch[v] = 1;
+  std::vector<std::size_t> inner;
+  for (std::size_t v : patch) {
+    bool all = !topo.on_boundary[v];
+    for (int w : topo.neighbors[v]) all = all && in_patch[idx(w)];
+    if (all) inner.push_back(v);
+  }
+  for (int it = 0; it < iterations; ++it) {
+    std::vector<Vec3> next(inner.size());
+    for (std::size_t i = 0; i < inner.size(); ++i) {
+      Vec3 c = Vec3::Zero();
+      for (int w : topo.neighbors[inner[i]]) c += mesh.vertices[idx(w)];
+      next[i] = c / static_cast<double>(topo.neighbors[inner[i]].size());
+    }
+    for (std::size_t i = 0; i < inner.size(); ++i) mesh.vertices[inner[i]] = next[i];
+  }
+}
+
+}  // namespace
+
+RaiseMinScaledJacobianReport raise_min_scaled_jacobian(HexMesh& mesh, const Mesh& surface,
+                                                       const RaiseMinScaledJacobianOptions& options) {
+  const detail::SurfaceProjector projector(surface);
+  return detail::raise_min_scaled_jacobian(mesh, projector, options);
+}
+
+RaiseMinScaledJacobianReport detail::raise_min_scaled_jacobian(HexMesh& mesh, const SurfaceProjector& projector,
+                                                               const RaiseMinScaledJacobianOptions& options) {
+  RaiseMinScaledJacobianReport report;
+  Raiser raiser(mesh, projector);
+  raiser.init_allowance();
+  std::vector<double> sj = scaled_jacobians(mesh);
+  report.min_before = min_of(sj);
+  report.num_inverted_before = count_inverted(sj);
+  report.sweeps = sweep(raiser, mesh, options.threshold, options.sweeps, false,
+                        [](std::size_t, double) { return true; }, report.num_moves);
+  sj = scaled_jacobians(mesh);
+  if (options.free_boundary_for_inverted && min_of(sj) <= kMargin) {
+    // last resort: the boundary vertices of the hexahedra under the margin
+    // may leave the surface (a vertex already off it keeps its distance)
+    const detail::HexTopology& topo = raiser.topology();
+    for (std::size_t h = 0; h < sj.size(); ++h)
+      if (sj[h] <= kMargin)
+        for (int v : mesh.hexes[h])
+          if (topo.on_boundary[idx(v)])
+            raiser.set_allowance(idx(v), std::max(options.max_off_surface * raiser.scale(idx(v)),
+                                                  raiser.distance_to_surface(mesh.vertices[idx(v)])));
+    const std::vector<Vec3> kept = mesh.vertices;
+    std::vector<Vec3> best = kept;
+    double best_min = min_of(sj);
+    for (const Repair& repair : kRepairs) {
+      mesh.vertices = kept;
+      const std::vector<std::size_t> patch = repair_patch(raiser, mesh, sj, repair.rings);
+      if (repair.laplacian > 0) relax_patch_interior(raiser, mesh, patch, repair.laplacian);
+      report.untangle_steps += raiser.untangle_patch(patch, kUntangleSteps);
+      report.sweeps += sweep(raiser, mesh, kMargin, options.sweeps, true,
+                             [](std::size_t, double) { return true; }, report.num_moves);
+      const double now = min_of(scaled_jacobians(mesh));
+      if (now > best_min) best_min = now, best = mesh.vertices;
+      if (best_min > kMargin) break;
+    }
+    mesh.vertices = std::move(best);
+    sj = scaled_jacobians(mesh);
+    for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
+      if (topo.on_boundary[v] && (mesh.vertices[v] - kept[v]).squaredNorm() > 0) ++report.num_off_surface;
+  }
+  if (options.quality_sweeps > 0) {
+    report.sweeps += sweep(raiser, mesh, options.quality_threshold, options.quality_sweeps, false,
+                           [](std::size_t, double) { return true; }, report.num_moves);
+    sj = scaled_jacobians(mesh);
+  }
+  report.min_after = min_of(sj);
+  report.num_inverted_after = count_inverted(sj);
+  return report;
+}
+
+}  // namespace subfab
