@@ -17,10 +17,12 @@
 //! block F (the others near it included), exactly where it matters:
 //!   1. Q = the input faces whose bounding box meets box(F) widened by the
 //!      reach r; R' = the box around box(F) and Q, widened by r (and a hair);
-//!   2. V = (F ∪ the other filled blocks, clipped to R') ∪ (S ∩ R'), by exact
-//!      booleans (CGAL corefinement, exact kernel, deterministic arena);
-//!      the faces of V on the planes of R' are cut faces of the clip, the
-//!      others are ∂S' ∩ R' exactly;
+//!   2. V = (F ∪ the other filled blocks, clipped to R'' = R' shrunk by half
+//!      the hair) ∪ (S ∩ R'), by exact booleans (CGAL corefinement, exact
+//!      kernel, deterministic arena; the two clips' cut faces are never
+//!      coplanar, which CGAL corefines slowly); the faces of V on the planes
+//!      of R' and R'' are cut faces, the others are ∂S' exactly within R'',
+//!      which holds box(F) widened by r;
 //!   3. to_input = one-sided Hausdorff distance from those faces to ∂S;
 //!      from_input = from Q to those faces (CGAL bounded error).
 //! Why local is enough: a point of ∂S' outside box(F) was a point of the
