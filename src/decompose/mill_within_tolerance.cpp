@@ -109,39 +109,26 @@ MillToleranceResult mill_within_tolerance(const Mesh& solid, std::vector<Block> 
     if (r.filled[i]) all_filled.push_back(&blocks[i].mesh);
   const double error = options.error_fraction * options.tolerance;
   const FillDeviationOptions fo{.reach = options.tolerance, .error = error, .max_faces = options.max_region_faces};
-  std::vector<std::pair<std::size_t, std::optional<BoundingBox>>> tasks;  // (block, box; none = whole block)
+  std::vector<std::size_t> measured_ids;
+  std::vector<const Mesh*> measured_blocks;
+  std::vector<std::optional<std::vector<BoundingBox>>> measured_fills;
+  std::size_t num_regions = 0;
   for (std::size_t i = 0; i < n; ++i) {
     if (!r.filled[i] || !r.failures[i].empty()) continue;
-    if (!fill[i])
-      tasks.emplace_back(i, std::nullopt);
-    else
-      for (const BoundingBox& b : *fill[i]) tasks.emplace_back(i, b);
+    measured_ids.push_back(i);
+    measured_blocks.push_back(&blocks[i].mesh);
+    measured_fills.push_back(std::move(fill[i]));
+    num_regions += measured_fills.back() ? measured_fills.back()->size() : 1;
   }
-  std::vector<FillDeviation> measured(tasks.size());
-  std::atomic<std::size_t> measured_done{0};
   if (progress)
-    progress->info("measuring the deviation in " + std::to_string(tasks.size()) + " region(s) of " +
+    progress->info("measuring the deviation in " + std::to_string(num_regions) + " region(s) of " +
                    std::to_string(all_filled.size()) + " filled block(s)");
-  parallel_for(0, tasks.size(), [&](std::size_t t) {
-    const auto& [i, core] = tasks[t];
-    std::vector<const Mesh*> others;
-    for (const Mesh* m : all_filled)
-      if (m != &blocks[i].mesh) others.push_back(m);
-    measured[t] = core ? meter.measure_fill(blocks[i].mesh, others, {*core}, fo) : meter.measure(blocks[i].mesh, others, fo);
-    if (progress) progress->update(n + (n * ++measured_done) / std::max<std::size_t>(tasks.size(), 1), 2 * n);
-  });
+  const std::vector<FillDeviation> measured =
+      measure_fills(meter, measured_blocks, measured_fills, all_filled, fo, [&](std::size_t d, std::size_t total) {
+        if (progress) progress->update(n + (n * d) / std::max<std::size_t>(total, 1), 2 * n);
+      });
   std::vector<FillDeviation> deviation(n);
-  for (std::size_t i = 0; i < n; ++i)
-    if (fill[i]) deviation[i] = meter.measure_fill(blocks[i].mesh, {}, {}, fo);  // no box: 0 + the error bound
-  for (std::size_t t = 0; t < tasks.size(); ++t) {
-    FillDeviation& d = deviation[tasks[t].first];
-    const FillDeviation& m = measured[t];
-    if (!d.failure.empty()) continue;
-    d.failure = m.failure;
-    d.to_input = std::max(d.to_input, m.to_input);
-    d.from_input = std::max(d.from_input, m.from_input);
-    d.error = std::max(d.error, m.error);
-  }
+  for (std::size_t k = 0; k < measured_ids.size(); ++k) deviation[measured_ids[k]] = measured[k];
   for (std::size_t i = 0; i < n; ++i) {
     if (r.filled[i] && r.failures[i].empty()) {
       const FillDeviation& dev = deviation[i];

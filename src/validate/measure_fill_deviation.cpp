@@ -7,8 +7,10 @@
 #include <CGAL/Polygon_mesh_processing/distance.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
+#include <atomic>
 #include <cmath>
 #include <array>
+#include <numeric>
 #include <map>
 #include <limits>
 #include <optional>
@@ -20,6 +22,7 @@
 #include "geometry/solid_index.h"
 #include "geometry/surface_deviation.h"
 #include "subfab/core/error.h"
+#include "subfab/core/parallel.h"
 
 namespace subfab {
 namespace {
@@ -78,15 +81,17 @@ struct Surface {
 //! copied to `error` on the heap (an exception's message allocated in the
 //! arena must not be read after the arena ends).
 void local_surface_in_arena(const Mesh& solid, const detail::SolidIndex& index, const Mesh& block,
-                            const std::vector<const Mesh*>& others, const Box3& region, std::optional<Surface>& out);
+                            const std::vector<const Mesh*>& others, const Box3& region, const Box3& inner,
+                            std::optional<Surface>& out);
 
 std::optional<Surface> local_surface(const Mesh& solid, const detail::SolidIndex& index, const Mesh& block,
-                                     const std::vector<const Mesh*>& others, const Box3& region, std::string& error) {
+                                     const std::vector<const Mesh*>& others, const Box3& region, const Box3& inner,
+                                     std::string& error) {
   detail::warm_up_exact_booleans();
   std::optional<Surface> out;
   detail::DeterministicArena arena;
   try {
-    local_surface_in_arena(solid, index, block, others, region, out);
+    local_surface_in_arena(solid, index, block, others, region, inner, out);
     return out;  // moved (a local): no allocation in the arena
   } catch (const PMP::Corefinement::Self_intersection_exception&) {
     detail::SuspendArena heap;
@@ -101,18 +106,24 @@ std::optional<Surface> local_surface(const Mesh& solid, const detail::SolidIndex
 }
 
 //! Fills `out` (under a SuspendArena) with the surface; leaves it empty when
-//! a union is not a 2-manifold.
+//! a union is not a 2-manifold. The solid is clipped to `region`, the blocks
+//! to `inner` (inside it, no plane shared): the two clips' cut faces are
+//! never coplanar (CGAL's corefinement of large overlapping coplanar cut
+//! faces was the measure's dominant cost). Faces on the planes of either
+//! box are cut faces, not surface (those on `inner`'s planes lie outside
+//! the core widened by the reach, see measure_region()).
 void local_surface_in_arena(const Mesh& solid, const detail::SolidIndex& index, const Mesh& block,
-                            const std::vector<const Mesh*>& others, const Box3& region, std::optional<Surface>& out) {
+                            const std::vector<const Mesh*>& others, const Box3& region, const Box3& inner,
+                            std::optional<Surface>& out) {
   std::vector<ExactMesh> pieces = detail::clip_solid_to_box(solid, index, region);
   ExactMesh v;
-  const BoundingBox rb{region.min, region.max};
+  const BoundingBox rb{inner.min, inner.max};
   std::vector<const Mesh*> operands{&block};
   operands.insert(operands.end(), others.begin(), others.end());
   for (const Mesh* o : operands) {
     ExactMesh e = detail::to_exact(*o);
     if (!inside(bounding_box(*o), rb)) {
-      ExactMesh box = detail::box_mesh(region), clipped;
+      ExactMesh box = detail::box_mesh(inner), clipped;
       if (!PMP::corefine_and_compute_intersection(e, box, clipped, kThrowOnSelfIntersection,
                                                   kThrowOnSelfIntersection))
         return;
@@ -133,12 +144,14 @@ void local_surface_in_arena(const Mesh& solid, const detail::SolidIndex& index, 
   std::vector<char> on_plane(v.number_of_faces(), 0);
   const detail::ExactKernel::FT lo[3] = {region.min.x(), region.min.y(), region.min.z()};
   const detail::ExactKernel::FT hi[3] = {region.max.x(), region.max.y(), region.max.z()};
+  const detail::ExactKernel::FT in_lo[3] = {inner.min.x(), inner.min.y(), inner.min.z()};
+  const detail::ExactKernel::FT in_hi[3] = {inner.max.x(), inner.max.y(), inner.max.z()};
   std::size_t i = 0;
   for (auto f : v.faces()) {
     const auto h = v.halfedge(f);
     const detail::ExactPoint* c[3] = {&v.point(v.source(h)), &v.point(v.target(h)), &v.point(v.target(v.next(h)))};
     for (int k = 0; k < 3 && !on_plane[i]; ++k)
-      for (const auto* plane : {&lo[k], &hi[k]})
+      for (const auto* plane : {&lo[k], &hi[k], &in_lo[k], &in_hi[k]})
         if ((*c[0])[k] == *plane && (*c[1])[k] == *plane && (*c[2])[k] == *plane) on_plane[i] = 1;
     ++i;
   }
@@ -268,6 +281,104 @@ std::optional<std::vector<BoundingBox>> fill_columns(const Mesh& carved, const M
   return out;
 }
 
+std::vector<BoundingBox> solid_columns(const Mesh& part, double merge_distance) {
+  if (part.faces.empty()) return {};
+  // connected components (faces sharing a vertex), and each one's lowest coordinates
+  std::vector<int> parent(part.vertices.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  auto find = [&](int v) {
+    while (parent[static_cast<std::size_t>(v)] != v)
+      v = parent[static_cast<std::size_t>(v)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(v)])];
+    return v;
+  };
+  for (const Triangle& f : part.faces)
+    for (int q = 1; q < 3; ++q) parent[static_cast<std::size_t>(find(f[q]))] = find(f[0]);
+  std::vector<Vec3> low(part.vertices.size(), Vec3::Constant(std::numeric_limits<double>::infinity()));
+  for (std::size_t v = 0; v < part.vertices.size(); ++v) {
+    Vec3& l = low[static_cast<std::size_t>(find(static_cast<int>(v)))];
+    l = l.cwiseMin(part.vertices[v]);
+  }
+  const BoundingBox all = bounding_box(part);
+  const double slack = rounding_slack(part);
+  std::vector<BoundingBox> best;
+  double best_volume = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 3; ++k) {
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    const double tile = std::max(all.size()[i], all.size()[j]) / 8.0;
+    std::map<std::pair<long, long>, BoundingBox> tiles;
+    for (const Triangle& f : part.faces) {
+      BoundingBox b;
+      for (int v : f) b.extend(part.vertices[static_cast<std::size_t>(v)]);
+      b.min[k] = low[static_cast<std::size_t>(find(f[0]))][k];
+      const auto key = tile > 0 ? std::pair<long, long>{static_cast<long>(std::floor((b.min[i] - all.min[i]) / tile)),
+                                                          static_cast<long>(std::floor((b.min[j] - all.min[j]) / tile))}
+                                  : std::pair<long, long>{0, 0};
+      BoundingBox& t = tiles[key];
+      t.extend(b.min);
+      t.extend(b.max);
+    }
+    std::vector<BoundingBox> boxes;
+    double volume = 0.0;
+    for (const auto& [key, b] : tiles) {
+      boxes.push_back(widened(b, slack));
+      volume += boxes.back().size().prod();
+    }
+    if (volume < best_volume) {
+      best_volume = volume;
+      best = std::move(boxes);
+    }
+  }
+  // Boxes within merge_distance of each other become their bounding box
+  // (their regions would overlap: one region costs less than several).
+  for (bool merged = true; merged && merge_distance > 0;) {
+    merged = false;
+    for (std::size_t a = 0; a < best.size() && !merged; ++a)
+      for (std::size_t b = a + 1; b < best.size() && !merged; ++b)
+        if (boxes_meet(widened(best[a], merge_distance / 2), widened(best[b], merge_distance / 2))) {
+          best[a].extend(best[b].min);
+          best[a].extend(best[b].max);
+          best.erase(best.begin() + static_cast<std::ptrdiff_t>(b));
+          merged = true;
+        }
+  }
+  return best;
+}
+
+std::vector<FillDeviation> measure_fills(const FillDeviationMeter& meter, const std::vector<const Mesh*>& blocks,
+                                         const std::vector<std::optional<std::vector<BoundingBox>>>& fills,
+                                         const std::vector<const Mesh*>& filled, const FillDeviationOptions& options,
+                                         const std::function<void(std::size_t, std::size_t)>& on_done) {
+  if (fills.size() != blocks.size()) throw InvalidArgumentError("measure_fills: one fill entry per block expected");
+  std::vector<std::pair<std::size_t, std::optional<BoundingBox>>> tasks;  // (block, box; none = whole block)
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    if (!fills[i])
+      tasks.emplace_back(i, std::nullopt);
+    else
+      for (const BoundingBox& b : *fills[i]) tasks.emplace_back(i, b);
+  }
+  std::vector<FillDeviation> measured(tasks.size());
+  std::atomic<std::size_t> done{0};
+  parallel_for(0, tasks.size(), [&](std::size_t t) {
+    const auto& [i, core] = tasks[t];
+    const Mesh& block = *blocks[i];
+    measured[t] = core ? meter.measure_fill(block, filled, {*core}, options) : meter.measure(block, filled, options);
+    if (on_done) on_done(++done, tasks.size());
+  });
+  std::vector<FillDeviation> deviation(blocks.size());
+  for (std::size_t i = 0; i < blocks.size(); ++i)
+    if (fills[i]) deviation[i] = meter.measure_fill(*blocks[i], {}, {}, options);  // no box: 0 + the error bound
+  for (std::size_t t = 0; t < tasks.size(); ++t) {
+    FillDeviation& d = deviation[tasks[t].first];
+    const FillDeviation& m = measured[t];
+    if (!d.failure.empty()) continue;
+    d.failure = m.failure;
+    d.to_input = std::max(d.to_input, m.to_input);
+    d.from_input = std::max(d.from_input, m.from_input);
+    d.error = std::max(d.error, m.error);
+  }
+  return deviation;
+}
+
 struct FillDeviationMeter::Impl {
   explicit Impl(const Mesh& s) : solid(s), index(s) {}
   Mesh solid;
@@ -316,6 +427,9 @@ FillDeviation FillDeviationMeter::measure_region(const Mesh& block, const std::v
     for (int v : solid.faces[static_cast<std::size_t>(f)]) around.extend(solid.vertices[static_cast<std::size_t>(v)]);
   const double hair = 1e-6 * std::max(around.diagonal(), 1e-300) + options.error;
   const BoundingBox region = widened(around, options.reach + hair);
+  // The blocks are clipped to `inner` (see local_surface_in_arena()): it
+  // still holds the core widened by the reach, where V's surface is ∂S'.
+  const BoundingBox inner = widened(around, options.reach + hair / 2);
   if (options.max_faces > 0) {
     const std::size_t in_region = impl_->index.faces_near_closed_box(Box3{region.min, region.max}).size();
     if (in_region > options.max_faces) {
@@ -329,7 +443,7 @@ FillDeviation FillDeviationMeter::measure_region(const Mesh& block, const std::v
     if (o != &block && boxes_meet(bounding_box(*o), region)) close.push_back(o);
   std::string error;
   const std::optional<Surface> surface =
-      local_surface(solid, impl_->index, block, close, Box3{region.min, region.max}, error);
+      local_surface(solid, impl_->index, block, close, Box3{region.min, region.max}, Box3{inner.min, inner.max}, error);
   if (!error.empty()) {
     d.failure = error;
     return d;

@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/deterministic_arena.h"
 #include "geometry/exact_mesh.h"
 #include "validate/validate_booleans.h"
 #include "subfab/checks/check_self_intersections.h"
@@ -233,6 +234,44 @@ double volume_outside(const Mesh& block, const Mesh& solid) { return outside_vol
 
 double detail::exact_volume_outside(const Mesh& block, const Mesh& solid) {
   return outside_volume(block, solid, Volume::Exact);
+}
+
+namespace {
+
+//! The boolean of outside_part(), inside the caller's arena: fills `out`
+//! (under a SuspendArena) or leaves it empty when the corefinement cannot
+//! give a 2-manifold.
+void outside_in_arena(const Mesh& block, const Mesh& solid, std::optional<detail::OutsidePart>& out) {
+  ExactMesh eb = detail::to_exact(block), es = detail::to_exact(solid), d;
+  if (!PMP::corefine_and_compute_difference(eb, es, d, kThrowOnSelfIntersection, kThrowOnSelfIntersection)) return;
+  const double volume = std::max(0.0, mesh_volume(d));
+  detail::SuspendArena heap;
+  out.emplace();
+  out->volume = volume;
+  out->mesh = detail::to_double(d);
+}
+
+}  // namespace
+
+detail::OutsidePart detail::outside_part(const Mesh& block, const Mesh& solid) {
+  if (!boxes_overlap(bounding_box(block), bounding_box(solid))) return {signed_volume(block), block};
+  require_boolean_input(block, "the block");
+  require_boolean_input(solid, "the input");
+  detail::warm_up_exact_booleans();
+  std::optional<OutsidePart> out;
+  {
+    detail::DeterministicArena arena;
+    try {
+      outside_in_arena(block, solid, out);
+    } catch (const std::exception&) {
+      // CGAL refused an operand (a self-intersection near the cut): the
+      // fallback below reports it, outside the arena.
+      detail::SuspendArena heap;
+      out.reset();
+    }
+  }
+  if (out) return std::move(*out);
+  return {volume_outside(block, solid), std::nullopt};
 }
 
 CoverageReport surface_coverage(const Mesh& input, const std::vector<const Mesh*>& blocks,

@@ -4,6 +4,7 @@
 // validate_booleans.cpp.
 #include "subfab/validate/validate_decomposition.h"
 #include "validate/box_separation.h"
+#include "validate/validate_booleans.h"
 #include "subfab/validate/check_single_precision.h"
 #include "subfab/validate/measure_fill_deviation.h"
 
@@ -354,6 +355,7 @@ ValidationReport validate_decomposition(const Mesh& input, const std::vector<Val
   // 4. inside the input
   const bool tolerant = options.tolerance > 0;
   std::vector<std::size_t> filled;  // blocks sticking out of the input (checked by check 10)
+  std::vector<std::optional<Mesh>> outside_parts(n);  // block \ input, where check 4's boolean gave it
   CheckReport inside = named_check(tolerant ? "inside the input, or sticking out within the tolerance (check 10)"
                                             : "inside the input (volume outside <= 1e-6 of the block)");
   {
@@ -361,9 +363,17 @@ ValidationReport validate_decomposition(const Mesh& input, const std::vector<Val
     std::vector<double> out(n, 0.0);
     std::vector<std::string> errors(n);
     std::atomic<std::size_t> done{0};
+    // Within a tolerance, the part of each block outside the input is kept
+    // for check 10, which measures the deviation only there.
     parallel_for(0, n, [&](std::size_t i) {
       try {
-        out[i] = volume_outside(blocks[i].mesh, input);
+        if (tolerant) {
+          detail::OutsidePart part = detail::outside_part(blocks[i].mesh, input);
+          out[i] = part.volume;
+          outside_parts[i] = std::move(part.mesh);
+        } else {
+          out[i] = volume_outside(blocks[i].mesh, input);  // no arena, no mesh kept: faster (kitten 45 vs 70 s)
+        }
       } catch (const std::exception& e) {
         errors[i] = e.what();
       }
@@ -565,13 +575,20 @@ ValidationReport validate_decomposition(const Mesh& input, const std::vector<Val
     const FillDeviationMeter meter(input);
     std::vector<const Mesh*> sticking;
     for (std::size_t i : filled) sticking.push_back(&blocks[i].mesh);
-    std::vector<FillDeviation> dev(filled.size());
-    const double error = options.tolerance_error * options.tolerance;
-    std::atomic<std::size_t> done{0};
+    // Only the points in the part of a block outside the input can deviate
+    // (measure_fill_deviation.h, with C = block ∩ input): measured in boxes
+    // that cover that part (check 4 computed it), near the whole block where
+    // check 4 fell back to the whole input.
+    std::vector<std::optional<std::vector<BoundingBox>>> cover(filled.size());
     parallel_for(0, filled.size(), [&](std::size_t k) {
-      dev[k] = meter.measure(*sticking[k], sticking, {.reach = options.tolerance, .error = error});
-      if (progress) progress->update(++done, filled.size());
+      if (outside_parts[filled[k]]) cover[k] = solid_columns(*outside_parts[filled[k]], 2 * options.tolerance);
     });
+    const double error = options.tolerance_error * options.tolerance;
+    const std::vector<FillDeviation> dev =
+        measure_fills(meter, sticking, cover, sticking, {.reach = options.tolerance, .error = error},
+                      [&](std::size_t d, std::size_t total) {
+                        if (progress) progress->update(d, total);
+                      });
     report.num_filled = filled.size();
     report.deviation_error = error;
     for (std::size_t k = 0; k < filled.size(); ++k) {

@@ -12,8 +12,10 @@
 #include "subfab/core/error.h"
 #include "subfab/mesh/read_mesh.h"
 #include "subfab/validate/milled_shape.h"
+#include "subfab/validate/validate_decomposition.h"
 #include "support/groove_shapes.h"
 #include "support/test_support.h"
+#include "validate/validate_booleans.h"
 
 namespace subfab {
 namespace {
@@ -206,6 +208,63 @@ TEST(MeasureFill, TwoFilledBlocksWhoseFillsMeet) {
     EXPECT_NEAR(local.to_input, whole.to_input, 0.02);
     EXPECT_NEAR(local.from_input, whole.from_input, 0.02);
   }
+}
+
+//! validate's check 10: the deviation of `block` measured only over its part
+//! outside `solid` (outside_part() as check 4 computes it, solid_columns()).
+FillDeviation measure_outside_part(const Mesh& solid, const Mesh& block, const FillDeviationOptions& o,
+                                   std::vector<BoundingBox>* cover_out = nullptr) {
+  const detail::OutsidePart part = detail::outside_part(block, solid);
+  EXPECT_TRUE(part.mesh.has_value());
+  if (!part.mesh) return {};
+  const std::vector<BoundingBox> cover = solid_columns(*part.mesh);
+  if (cover_out) *cover_out = cover;
+  const FillDeviationMeter meter(solid);
+  const std::vector<FillDeviation> d = measure_fills(meter, {&block}, {cover}, {&block}, o);
+  return d.at(0);
+}
+
+TEST(SolidColumns, TheOutsidePartOfACupsFillIsCoveredAndMeasuredExactly) {
+  // The upside-down cup of AnUpsideDownCupsBuriedCeilingRisesAboveItsRim,
+  // milled along +z: what sticks out is the 4 x 4 x 3 cavity (volume 48),
+  // and the deviation measured over it alone is the analytic one (to_input
+  // 2, from_input 1), as near the whole block.
+  std::set<test::Cell> cells;
+  for (const test::Cell& c : cells_of_box({0, 0, 0}, {6, 6, 4}))
+    if (!(c[0] >= 1 && c[0] < 5 && c[1] >= 1 && c[1] < 5 && c[2] < 3)) cells.insert(c);
+  const Mesh solid = voxel_mesh(cells);
+  const Mesh milled = milled_along(solid, Axis::PosZ);
+  const detail::OutsidePart part = detail::outside_part(milled, solid);
+  EXPECT_NEAR(part.volume, 48.0, 1e-9);
+  EXPECT_NEAR(part.volume, volume_outside(milled, solid), 1e-9);
+  const FillDeviationOptions o{.reach = 2.5, .error = 0.01};
+  std::vector<BoundingBox> cover;
+  const FillDeviation d = measure_outside_part(solid, milled, o, &cover);
+  EXPECT_TRUE(covered(cover, Vec3(3, 3, 1.5)));
+  EXPECT_TRUE(covered(cover, Vec3(1, 1, 0)));
+  EXPECT_FALSE(covered(cover, Vec3(3, 3, 3.5)));  // the cup's roof, inside the input
+  EXPECT_FALSE(covered(cover, Vec3(0.5, 3, 1)));  // its wall
+  ASSERT_TRUE(d.failure.empty()) << d.failure;
+  EXPECT_NEAR(d.to_input, 2.0, 0.01);
+  EXPECT_NEAR(d.from_input, 1.0, 0.01);
+  EXPECT_GE(d.bound(), 2.0);
+  EXPECT_LE(d.bound(), 2.0 + 2 * 0.01);
+}
+
+TEST(SolidColumns, ABlockOnTheInputHasNoOutsidePartAndDeviatesNothing) {
+  // A block that is a piece of the input (its faces on the input's surface
+  // or inside it): nothing outside, no box, deviation 0 (+ the error bound).
+  const Mesh solid = voxel_mesh(grooved_box_cells());
+  const Mesh piece = voxel_mesh(test::slab_of(grooved_box_cells(), 0, 4));
+  const detail::OutsidePart part = detail::outside_part(piece, solid);
+  EXPECT_EQ(part.volume, 0.0);
+  ASSERT_TRUE(part.mesh.has_value());
+  EXPECT_TRUE(solid_columns(*part.mesh).empty());
+  const FillDeviation d = measure_outside_part(solid, piece, {.reach = 1.5, .error = 0.01});
+  EXPECT_TRUE(d.failure.empty());
+  EXPECT_EQ(d.to_input, 0.0);
+  EXPECT_EQ(d.from_input, 0.0);
+  EXPECT_LE(d.bound(), 0.01 + 1e-12);
 }
 
 TEST(MeasureFill, AgreesWithTheWholeBlockMeasureOnPiecesOfTheBunny) {

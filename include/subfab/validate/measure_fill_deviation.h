@@ -17,10 +17,12 @@
 //! block F (the others near it included), exactly where it matters:
 //!   1. Q = the input faces whose bounding box meets box(F) widened by the
 //!      reach r; R' = the box around box(F) and Q, widened by r (and a hair);
-//!   2. V = (F ∪ the other filled blocks, clipped to R') ∪ (S ∩ R'), by exact
-//!      booleans (CGAL corefinement, exact kernel, deterministic arena);
-//!      the faces of V on the planes of R' are cut faces of the clip, the
-//!      others are ∂S' ∩ R' exactly;
+//!   2. V = (F ∪ the other filled blocks, clipped to R'' = R' shrunk by half
+//!      the hair) ∪ (S ∩ R'), by exact booleans (CGAL corefinement, exact
+//!      kernel, deterministic arena; the two clips' cut faces are never
+//!      coplanar, which CGAL corefines slowly); the faces of V on the planes
+//!      of R' and R'' are cut faces, the others are ∂S' exactly within R'',
+//!      which holds box(F) widened by r;
 //!   3. to_input = one-sided Hausdorff distance from those faces to ∂S;
 //!      from_input = from Q to those faces (CGAL bounded error).
 //! Why local is enough: a point of ∂S' outside box(F) was a point of the
@@ -55,6 +57,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -143,5 +146,33 @@ class FillDeviationMeter {
 //! \return nullopt when the milled mesh is not such a height field (measure
 //!         the whole block instead); an empty vector when nothing is added
 std::optional<std::vector<BoundingBox>> fill_columns(const Mesh& carved, const Mesh& milled, Axis axis);
+
+//! Closed boxes whose union covers a closed solid `part` (validate's check
+//! 10: part = block \ input, the material a block adds; with C = block ∩
+//! input the file comment's argument holds, C ⊆ S and C ⊆ F, so only the
+//! points in these boxes can deviate). A point of the solid lies under the
+//! face where the line through it along an axis leaves the solid, and above
+//! the lowest point of its connected component: so the columns (face box
+//! extended down to its component's lowest coordinate) of all faces cover
+//! it. Columns along the axis whose boxes are smallest in all, gathered per
+//! tile of an 8 x 8 grid over the footprint (one box per tile), each widened
+//! by 16 ulps of the largest coordinate (the part's vertices were rounded
+//! from exact points). Boxes closer than `merge_distance` (model units, >=
+//! 0; 0 = none merged) are replaced by their bounding box (check 10 passes
+//! twice the reach: such boxes' regions overlap, and one region costs less
+//! than two). Empty for an empty mesh.
+std::vector<BoundingBox> solid_columns(const Mesh& part, double merge_distance = 0.0);
+
+//! measure_fill() of many blocks at once: one parallel task per box (a big
+//! block has many), measure() for a block whose `fills` entry is nullopt
+//! (fill_columns() could not bound it). blocks[i] sticks out with the fill
+//! boxes fills[i]; `filled` lists every block that sticks out (the others
+//! near each region; a block is skipped in its own list). Deterministic
+//! whatever the thread count (each task's result is independent of it).
+//! \param on_done called after each task (done, total), from any thread
+std::vector<FillDeviation> measure_fills(const FillDeviationMeter& meter, const std::vector<const Mesh*>& blocks,
+                                         const std::vector<std::optional<std::vector<BoundingBox>>>& fills,
+                                         const std::vector<const Mesh*>& filled, const FillDeviationOptions& options,
+                                         const std::function<void(std::size_t, std::size_t)>& on_done = {});
 
 }  // namespace subfab
