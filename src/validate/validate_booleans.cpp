@@ -255,7 +255,7 @@ void outside_in_arena(const Mesh& block, const Mesh& solid, std::optional<detail
 
 detail::OutsidePart detail::outside_part(const Mesh& block, const Mesh& solid) {
   if (!boxes_overlap(bounding_box(block), bounding_box(solid))) return {signed_volume(block), block};
-  require_boolean_input(block, "the block");
+  require_boolean_input(block, "the block", true);
   require_boolean_input(solid, "the input");
   detail::warm_up_exact_booleans();
   std::optional<OutsidePart> out;
