@@ -27,6 +27,7 @@
 #include "subfab/decompose/mill_within_tolerance.h"
 #include "subfab/decompose/tolerance_allowances.h"
 #include "subfab/decompose/orient_mesh.h"
+#include "subfab/decompose/remove_slivers.h"
 #include "subfab/decompose/resolve_overlaps.h"
 #include "subfab/decompose/select_cover.h"
 #include "subfab/decompose/snap_and_shrink.h"
@@ -59,6 +60,8 @@ void check_options(const DecomposeOptions& o) {
       !std::all_of(o.tolerance_depth_fractions.begin(), o.tolerance_depth_fractions.end(),
                    [](double q) { return q > 0 && std::isfinite(q); }))
     throw InvalidArgumentError("tolerance_depth_fractions must be positive finite numbers (at least one)");
+  if (!(o.sliver_thickness >= 0) || !std::isfinite(o.sliver_thickness))
+    throw InvalidArgumentError("the sliver thickness must be a fraction of the bounding-box diagonal >= 0");
   overhang_sine(o.max_overhang_deg);  // throws on a value outside [0, 45] degrees
 }
 
@@ -621,6 +624,30 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
     if (progress)
       progress->info(std::to_string(merged.num_merges) + " merges within the tolerance (" +
                      std::to_string(merged.num_candidates) + " milled shapes evaluated)");
+  }
+  // 9. no slivers (issue 17): blocks thinner than max(1e-4 x diagonal, T)
+  //    where the model is thicker are merged or dropped within the
+  //    tolerance; at T = 0 only counted (remove_slivers.h).
+  {
+    const auto tt = Clock::now();
+    SliverRemovalOptions so;
+    so.min_thickness = std::max(options.sliver_thickness * diagonal, result.tolerance);
+    so.tolerance = result.tolerance;
+    so.max_height = result.max_height;
+    so.machine_size = machine;
+    so.progress = progress;
+    if (!result.filled.empty()) so.filled = &result.filled;
+    if (so.min_thickness > 0) {
+      SliverRemovalResult sl = remove_slivers(solid, std::move(result.blocks), so);
+      result.blocks = std::move(sl.blocks);
+      if (result.tolerance > 0) result.filled = std::move(sl.filled);
+      result.deviation_bound = std::max(result.deviation_bound, sl.max_deviation);
+      result.sliver_thickness = so.min_thickness;
+      result.num_slivers = sl.num_left;
+      result.num_slivers_merged = sl.num_merged;
+      result.num_slivers_dropped = sl.num_dropped;
+    }
+    (result.tolerance > 0 ? result.timings.tolerance : result.timings.carve) += seconds_since(tt);
   }
   result.timings.total = seconds_since(start);
   return result;

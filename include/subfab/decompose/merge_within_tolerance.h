@@ -55,6 +55,12 @@ struct ToleranceMergeOptions {
   int max_rounds = 64;            // rounds of pairwise merging
   const std::vector<char>* filled = nullptr;  // per input block: 1 when it already sticks out of the solid
                                   // (milled shapes of mill_within_tolerance()); nullptr: none does
+  const std::vector<char>* focus = nullptr;   // per input block: when set, only pairs holding a block flagged 1
+                                  // are tried (remove_slivers(): each sliver with its neighbours); a merged
+                                  // block is not flagged. nullptr: every touching pair
+  bool clean_rounding = false;    // a union whose rounding to doubles leaves zero-area or flipped faces gets
+                                  // export's cleanup (clean_rounded_block(), 1e-10 x scale, added to the
+                                  // deviation bound) instead of being rejected (remove_slivers() sets it)
   Progress* progress = nullptr;   // progress and info (nullptr: silent)
 };
 
