@@ -12,43 +12,45 @@
 //! segments on a grid of lines along that axis). decompose() sets
 //! min_thickness = max(1e-4 x diagonal, T), as validate does.
 //!
-//! The rule: within a tolerance T > 0, every sliver is merged into a
-//! touching block, the two replaced by the MILLED SHAPE of their union along
-//! one of the six directions, under exactly the tests of
-//! merge_within_tolerance() (closed 2-manifold, exact height field, height and
-//! machine limits; the model then made measured within T by
-//! FillDeviationMeter, measure + error bound <= T; no overlap with any other
-//! block, exact volume <= 1e-6 of the smaller), but with every direction
-//! tried, the size caps of the ordinary merges raised (a sliver is worth a
-//! slow measure), and a union whose rounding to doubles leaves zero-area
-//! faces cleaned as export cleans every block (clean_rounded_block(), its
-//! 1e-10 x scale added to the bound) instead of rejected. Only pairs
-//! holding a sliver are tried.
-//! A sliver no merge absorbs (typically a thin cap lying across several
-//! blocks, which no single neighbour's milled shape can take without
-//! colliding with the others) is DROPPED when the model stays within T
-//! without it, measured (CGAL bounded-error Hausdorff distances, measure +
-//! error bound <= T):
-//!   (a) the faces the drop exposes (a subset of the sliver's surface) lie
-//!       within T of the input surface: one-sided distance from the whole
-//!       sliver surface to the input faces within T of its box;
-//!   (b) the input surface near the sliver (the input faces within T of its
-//!       box) stays within T of another block: one-sided distance to the
-//!       surfaces of the blocks within 2T of its box (a nearest point
-//!       farther away would be farther than T);
-//!   (c) no block that sticks out of the solid lies within 2T of its box
-//!       (where fills meet, (a) and (b) would not describe the surface made).
-//! Input points farther than T from the sliver's box keep their nearest
-//! surface point (it was not on the sliver), and the surface made gains
-//! only the exposed faces, so (a) and (b) bound the whole change. The
-//! dropped sliver's volume is left empty (a dent at most T deep, like the
-//! model's empty interior). Drops in one pass are at least 2T apart; passes
-//! repeat while some drop is taken.
-//! A sliver neither can remove is kept and reported (decomposition.json
+//! The rule: within a tolerance T > 0, every sliver is removed when that is
+//! measured within T, in this order:
+//! 1. DROPPED when the model stays within T without it (cheap: two
+//!    bounded-error distances; CGAL's bounded-error Hausdorff distance,
+//!    measure + error bound <= T):
+//!    (a) the faces the drop exposes (a subset of the sliver's surface) lie
+//!        within T of the input surface: one-sided distance from the whole
+//!        sliver surface to the input faces within T of its box;
+//!    (b) the input surface near the sliver (the input faces within T of its
+//!        box) stays within T of another block: one-sided distance to the
+//!        surfaces of the blocks within 2T of its box (a nearest point
+//!        farther away would be farther than T);
+//!    (c) no block that sticks out of the solid lies within 2T of its box
+//!        (where fills meet, (a) and (b) would not describe the surface made).
+//!    Input points farther than T from the sliver's box keep their nearest
+//!    surface point (it was not on the sliver), and the surface made gains
+//!    only the exposed faces, so (a) and (b) bound the whole change. The
+//!    dropped volume is left empty (a dent at most T deep, like the model's
+//!    empty interior). Drops in one pass are more than 2T apart; passes
+//!    repeat while some drop is taken. Typical case: a thin cap lying across
+//!    several blocks, which no single neighbour's milled shape can take
+//!    without colliding with the others.
+//! 2. MERGED into a touching block otherwise: the two replaced by the MILLED
+//!    SHAPE of their union along one of the six directions, under exactly the
+//!    tests of merge_within_tolerance() (closed 2-manifold, exact height
+//!    field, height and machine limits; the model then made measured within
+//!    T by FillDeviationMeter, measure + error bound <= T; no overlap with
+//!    any other block, exact volume <= 1e-6 of the smaller), with a wider
+//!    direction screen, the size caps raised (a sliver is worth a slow
+//!    measure), and a union whose rounding to doubles leaves zero-area faces
+//!    cleaned as export cleans every block (clean_rounded_block(), its
+//!    1e-10 x scale added to the bound) instead of rejected. Only pairs
+//!    holding a sliver are tried. Typical case: a slab reaching past its
+//!    neighbour (a drop would uncover the input there).
+//! A sliver neither removes is kept and reported (decomposition.json
 //! "num_slivers", validate check 9). At T = 0 nothing may deviate and the
-//! exact merges (merge_blocks) have already joined every pair whose union
-//! is a block, so slivers are only counted and reported (none on the
-//! statues measured, bench/RESULTS.md).
+//! exact merges (merge_blocks) have already joined every pair whose union is
+//! a block, so slivers are only counted and reported (none on the statues
+//! measured, bench/RESULTS.md).
 //! Deterministic whatever the thread count.
 #pragma once
 
