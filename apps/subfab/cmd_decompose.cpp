@@ -202,6 +202,9 @@ int run_decompose(const DecomposeArgs& args) {
         << " block(s) stick out of the input (undercuts filled), measured deviation bound "
         << result.deviation_bound << " (" << result.deviation_bound / diagonal
         << " x diagonal); every block is an exact height field (subfab validate checks the deviation)";
+    msg << "; slivers (thinner than " << result.sliver_thickness / diagonal
+        << " x diagonal where the model is thicker): " << result.num_slivers_merged << " merged, "
+        << result.num_slivers_dropped << " dropped, " << result.num_slivers << " left";
     if (result.num_features_within_tolerance > 0)
       msg << "; " << result.num_features_within_tolerance
           << " crease(s)/spike(s) no exact block can cover were left to the tolerance instead of the thin-feature "
@@ -243,6 +246,10 @@ int run_decompose(const DecomposeArgs& args) {
     j["num_sticking_out"] = std::count(result.filled.begin(), result.filled.end(), char{1});
     j["deviation_bound"] = result.deviation_bound;
     j["num_features_within_tolerance"] = result.num_features_within_tolerance;
+    j["sliver_thickness"] = result.sliver_thickness;
+    j["num_slivers"] = result.num_slivers;
+    j["num_slivers_merged"] = result.num_slivers_merged;
+    j["num_slivers_dropped"] = result.num_slivers_dropped;
     j["timings_s"] = {{"orient", t.orient}, {"repair", t.repair},   {"field", t.field}, {"grow", t.grow},
                       {"cover", t.cover},   {"resolve", t.resolve}, {"carve", t.carve}, {"tolerance", t.tolerance}, {"total", t.total}};
     std::cout << j.dump(2) << "\n";

@@ -31,6 +31,7 @@
 #include "subfab/decompose/mill_within_tolerance.h"
 #include "subfab/decompose/tolerance_allowances.h"
 #include "subfab/decompose/orient_mesh.h"
+#include "subfab/decompose/remove_slivers.h"
 #include "subfab/decompose/resolve_overlaps.h"
 #include "subfab/decompose/select_cover.h"
 #include "subfab/decompose/snap_and_shrink.h"
@@ -63,6 +64,8 @@ void check_options(const DecomposeOptions& o) {
       !std::all_of(o.tolerance_depth_fractions.begin(), o.tolerance_depth_fractions.end(),
                    [](double q) { return q > 0 && std::isfinite(q); }))
     throw InvalidArgumentError("tolerance_depth_fractions must be positive finite numbers (at least one)");
+  if (!(o.sliver_thickness >= 0) || !std::isfinite(o.sliver_thickness))
+    throw InvalidArgumentError("the sliver thickness must be a fraction of the bounding-box diagonal >= 0");
   overhang_sine(o.max_overhang_deg);  // throws on a value outside [0, 45] degrees
 }
 
@@ -607,6 +610,21 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
       result.timings = t;
     }
   }
+  // A block made by a merge below must survive the export: rounded to the
+  // input frame (finalize_blocks()) and written in single precision (its
+  // machine STL).
+  FinalizeOptions fo;
+  fo.normal_tolerance = height_field_normal_tolerance(result.max_overhang_deg);
+  const RoundedBlockCheck rounding(result.repaired_input ? *result.repaired_input : input, result, fo);
+  const auto export_defect = [&rounding, &result](const Block& b) {
+    Mesh finished;
+    std::string defect = rounding.defect(b, &finished);
+    if (defect.empty() && !finished.faces.empty()) {
+      Mesh stl = machine_mesh_of(finished, b.axis, result.rotation);
+      if (!detail::clean_single_precision(stl, finished).ok) defect = "not a solid in single precision";
+    }
+    return defect;
+  };
   // 8. fewer blocks within the tolerance (issue 17): merges into milled shapes
   if (result.tolerance > 0) {
     const auto tt = Clock::now();
@@ -616,20 +634,7 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
     to.machine_size = machine;
     to.progress = progress;
     if (!filled.empty()) to.filled = &filled;
-    // A merged block must survive the export: rounded to the input frame
-    // (finalize_blocks()) and written in single precision (its machine STL).
-    FinalizeOptions fo;
-    fo.normal_tolerance = height_field_normal_tolerance(result.max_overhang_deg);
-    const RoundedBlockCheck rounding(result.repaired_input ? *result.repaired_input : input, result, fo);
-    to.block_defect = [&rounding, &result](const Block& b) {
-      Mesh finished;
-      std::string defect = rounding.defect(b, &finished);
-      if (defect.empty() && !finished.faces.empty()) {
-        Mesh machine = machine_mesh_of(finished, b.axis, result.rotation);
-        if (!detail::clean_single_precision(machine, finished).ok) defect = "not a solid in single precision";
-      }
-      return defect;
-    };
+    to.block_defect = export_defect;
     ToleranceMergeResult merged = merge_within_tolerance(solid, std::move(result.blocks), to);
     result.blocks = std::move(merged.blocks);
     result.filled = std::move(merged.filled);
@@ -639,6 +644,31 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
     if (progress)
       progress->info(std::to_string(merged.num_merges) + " merges within the tolerance (" +
                      std::to_string(merged.num_candidates) + " milled shapes evaluated)");
+  }
+  // 9. no slivers (issue 17): blocks thinner than max(1e-4 x diagonal, T)
+  //    where the model is thicker are merged or dropped within the
+  //    tolerance; at T = 0 only counted (remove_slivers.h).
+  {
+    const auto tt = Clock::now();
+    SliverRemovalOptions so;
+    so.min_thickness = std::max(options.sliver_thickness * diagonal, result.tolerance);
+    so.tolerance = result.tolerance;
+    so.max_height = result.max_height;
+    so.machine_size = machine;
+    so.progress = progress;
+    so.block_defect = export_defect;
+    if (!result.filled.empty()) so.filled = &result.filled;
+    if (so.min_thickness > 0) {
+      SliverRemovalResult sl = remove_slivers(solid, std::move(result.blocks), so);
+      result.blocks = std::move(sl.blocks);
+      if (result.tolerance > 0) result.filled = std::move(sl.filled);
+      result.deviation_bound = std::max(result.deviation_bound, sl.max_deviation);
+      result.sliver_thickness = so.min_thickness;
+      result.num_slivers = sl.num_left;
+      result.num_slivers_merged = sl.num_merged;
+      result.num_slivers_dropped = sl.num_dropped;
+    }
+    (result.tolerance > 0 ? result.timings.tolerance : result.timings.carve) += seconds_since(tt);
   }
   result.timings.total = seconds_since(start);
   return result;

@@ -209,6 +209,10 @@ std::string decomposition_json(const Mesh& input, const DecomposeResult& result,
                     {"num_allowed_faces", result.num_allowed_faces},
                     {"num_tolerance_rounds", result.num_tolerance_rounds},
                     {"num_sticking_out", std::count(result.filled.begin(), result.filled.end(), char{1})},
+                    {"sliver_thickness", result.sliver_thickness},
+                    {"num_slivers", result.num_slivers},
+                    {"num_slivers_merged", result.num_slivers_merged},
+                    {"num_slivers_dropped", result.num_slivers_dropped},
                     {"deviation_bound", result.deviation_bound},
                     {"deviation_bound_fraction", diagonal > 0 ? result.deviation_bound / diagonal : 0.0}};
   auto ms = [](double s) { return std::round(s * 1000.0) / 1000.0; };

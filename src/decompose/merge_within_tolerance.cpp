@@ -14,6 +14,7 @@
 #include "geometry/undercut_depth.h"
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
+#include "subfab/decompose/finalize_blocks.h"
 #include "subfab/validate/measure_fill_deviation.h"
 #include "subfab/validate/milled_shape.h"
 #include "subfab/validate/validate_decomposition.h"
@@ -31,11 +32,30 @@ BoundingBox widened(BoundingBox box, double margin) {
 
 //! The union of two touching blocks when it is one closed 2-manifold piece
 //! that rounds to doubles without degenerate or flipped faces (exact
-//! corefinement in a deterministic arena).
-std::optional<Mesh> exact_union(const Mesh& a, const Mesh& b) {
+//! corefinement in a deterministic arena). With `clean` (remove_slivers()),
+//! a union whose rounding leaves such faces (thin triangles where the
+//! corefinement cut the glued faces) gets export's cleanup instead
+//! (clean_rounded_block(), relative tolerance 1e-10 of the scale, along
+//! `direction`) and is kept when it is then a closed 2-manifold without
+//! zero-area faces; `*moved` is set to the cleanup's tolerance (how far a
+//! vertex may have moved, model units), else 0.
+std::optional<Mesh> exact_union(const Mesh& a, const Mesh& b, bool clean, const Vec3& direction, double* moved) {
   detail::RoundingReport rounding;
   std::optional<Mesh> u = detail::exact_block_union(a, b, nullptr, rounding);
-  if (u && rounding.num_degenerate_faces + rounding.num_flipped_faces > 0) return std::nullopt;
+  *moved = 0.0;
+  if (!u || rounding.num_degenerate_faces + rounding.num_flipped_faces == 0) return u;
+  if (!clean) return std::nullopt;
+  const BoundingBox box = bounding_box(*u);
+  double scale = box.diagonal();
+  for (const Vec3& v : u->vertices) scale = std::max(scale, v.cwiseAbs().maxCoeff());
+  const FinalizeOptions fo;
+  *moved = fo.relative_tolerance * scale;
+  try {
+    clean_rounded_block(*u, direction, *moved, fo);
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+  if (u->faces.empty() || !check_closed_solid(*u).ok() || detail::count_degenerate_faces(*u) > 0) return std::nullopt;
   return u;
 }
 
@@ -108,7 +128,9 @@ std::optional<Candidate> evaluate(std::size_t i, std::size_t j, const State& s, 
     if (detail::within_limits(ubox, axis, o.max_height, o.machine_size) && screen.passes(axis_direction(axis), o.screen_factor * o.tolerance))
       axes.push_back(axis);
   if (axes.empty()) return std::nullopt;
-  const std::optional<Mesh> u = exact_union(s.blocks[i].mesh, s.blocks[j].mesh);
+  double moved = 0.0;
+  const std::optional<Mesh> u =
+      exact_union(s.blocks[i].mesh, s.blocks[j].mesh, o.clean_rounding, axis_direction(axes.front()), &moved);
   if (!u) return std::nullopt;
   std::vector<const Mesh*> others;
   for (std::size_t k = 0; k < s.blocks.size(); ++k)
@@ -124,6 +146,9 @@ std::optional<Candidate> evaluate(std::size_t i, std::size_t j, const State& s, 
     }
     ++tried;
     if (milled.is_block) {
+      // A cleaned union is kept only when it is a valid block as export checks it
+      // (closed, oriented, no zero-area face, no self-intersection, height field).
+      if (moved > 0 && !block_defect(*u, d, bounding_box(*u).diagonal()).empty()) continue;
       if (o.block_defect && !o.block_defect(Block{*u, axis, -1}).empty()) continue;
       return Candidate{*u, axis, s.filled[i] || s.filled[j], 0.0};
     }
@@ -136,7 +161,7 @@ std::optional<Candidate> evaluate(std::size_t i, std::size_t j, const State& s, 
     std::optional<std::vector<BoundingBox>> fill;
     if (!s.filled[i] && !s.filled[j]) fill = fill_columns(*u, m, axis);
     const FillDeviation dev = fill ? meter.measure_fill(m, others, *fill, fo) : meter.measure(m, others, fo);
-    if (!dev.failure.empty() || dev.bound() > o.tolerance) continue;
+    if (!dev.failure.empty() || dev.bound() + moved > o.tolerance) continue;
     const BoundingBox mbox = bounding_box(m);
     const double volume = signed_volume(m);
     bool collides = false;
@@ -154,7 +179,7 @@ std::optional<Candidate> evaluate(std::size_t i, std::size_t j, const State& s, 
     }
     if (collides) continue;
     if (o.block_defect && !o.block_defect(Block{m, axis, -1}).empty()) continue;
-    return Candidate{m, axis, true, dev.bound()};
+    return Candidate{m, axis, true, dev.bound() + moved};
   }
   return std::nullopt;
 }
@@ -172,6 +197,9 @@ ToleranceMergeResult merge_within_tolerance(const Mesh& solid, std::vector<Block
   if (options.filled && options.filled->size() != blocks.size())
     throw InvalidArgumentError("merge_within_tolerance: one filled flag per block expected");
   std::vector<char> filled = options.filled ? *options.filled : std::vector<char>(blocks.size(), 0);
+  if (options.focus && options.focus->size() != blocks.size())
+    throw InvalidArgumentError("merge_within_tolerance: one focus flag per block expected");
+  std::vector<char> focus = options.focus ? *options.focus : std::vector<char>(blocks.size(), 1);
   std::vector<std::size_t> ids(blocks.size());
   for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = i;
   std::size_t next_id = blocks.size();
@@ -184,7 +212,7 @@ ToleranceMergeResult merge_within_tolerance(const Mesh& solid, std::vector<Block
     std::vector<std::tuple<double, std::size_t, std::size_t>> order;
     for (std::size_t i = 0; i < blocks.size(); ++i)
       for (std::size_t j = i + 1; j < blocks.size(); ++j)
-        if (detail::boxes_touch(boxes[i], boxes[j]) && !rejected.count({ids[i], ids[j]}) &&
+        if ((focus[i] || focus[j]) && detail::boxes_touch(boxes[i], boxes[j]) && !rejected.count({ids[i], ids[j]}) &&
             blocks[i].mesh.num_faces() + blocks[j].mesh.num_faces() <= options.max_pair_faces)
           order.emplace_back(std::min(volumes[i], volumes[j]), i, j);
     if (order.empty()) break;
@@ -219,6 +247,7 @@ ToleranceMergeResult merge_within_tolerance(const Mesh& solid, std::vector<Block
       blocks[i].mesh = std::move(found[p]->mesh);
       blocks[i].axis = found[p]->axis;
       filled[i] = found[p]->filled ? 1 : 0;
+      focus[i] = options.focus ? 0 : 1;
       ids[i] = next_id++;
       removed[j] = 1;
       ++merged_now;
@@ -230,16 +259,18 @@ ToleranceMergeResult merge_within_tolerance(const Mesh& solid, std::vector<Block
     result.num_merges += merged_now;
     std::vector<Block> kept;
     std::vector<std::size_t> kept_ids;
-    std::vector<char> kept_filled;
+    std::vector<char> kept_filled, kept_focus;
     for (std::size_t i = 0; i < blocks.size(); ++i)
       if (!removed[i]) {
         kept.push_back(std::move(blocks[i]));
         kept_ids.push_back(ids[i]);
         kept_filled.push_back(filled[i]);
+        kept_focus.push_back(focus[i]);
       }
     blocks = std::move(kept);
     ids = std::move(kept_ids);
     filled = std::move(kept_filled);
+    focus = std::move(kept_focus);
   }
   result.blocks = std::move(blocks);
   result.filled = std::move(filled);

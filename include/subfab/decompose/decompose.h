@@ -5,7 +5,8 @@
 //!   orient (4.3.1) -> fields (4.3.2) -> grow boxes (4.3.2, App. B)
 //!   -> minimal cover (4.3.2, CBC) -> snap and shrink (4.3.4) -> resolve overlaps (4.3.3: conflict
 //!   graph, cycle splits, carve order) -> carve (exact booleans)
-//!   -> merge (4.3.4 post-processing)
+//!   -> merge (4.3.4 post-processing) [-> merges within the tolerance, issue 17]
+//!   -> no slivers (issue 17: remove_slivers.h)
 //!
 //! Everything happens in the canonical frame (canonical = rotation x input);
 //! export_decomposition() writes the blocks back in the input's frame.
@@ -49,6 +50,9 @@ struct DecomposeOptions {
                                     // vertical when its undercut depth <= q x T, q first the first of these (> 0,
                                     // unitless); where a block's milled shape fails the measure, the faces in its
                                     // box step to the next q, then to none. A heuristic: the measure decides
+  double sliver_thickness = 1e-4;  // blocks thinner than max(this x bbox diagonal, the tolerance) where the model
+                                   // is thicker are slivers (validate check 9): within a tolerance they are merged
+                                   // or dropped where measured within it, at 0 only counted (remove_slivers.h)
   Progress* progress = nullptr; // stage progress (nullptr = silent)
 };
 
@@ -82,6 +86,10 @@ struct DecomposeResult {
   std::size_t num_tolerance_merges = 0;  // merges into milled shapes within the tolerance
   std::size_t num_allowed_faces = 0;     // faces first allowed to lean past vertical (tolerance_allowances())
   int num_tolerance_rounds = 0;          // decompositions under allowances that were milled and measured
+  double sliver_thickness = 0.0;         // the sliver threshold used (model units; remove_slivers.h)
+  std::size_t num_slivers = 0;           // slivers among the output blocks (kept: nothing removes them within T)
+  std::size_t num_slivers_merged = 0;    // slivers merged into a neighbour within the tolerance
+  std::size_t num_slivers_dropped = 0;   // slivers dropped within the tolerance
   std::size_t num_features_within_tolerance = 0;  // infeasible features (creases, spikes) left to the tolerance
                                                   // instead of the thin-feature repair (their faces' allowances
                                                   // pinned); 0 when none or when they were repaired

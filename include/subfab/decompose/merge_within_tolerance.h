@@ -60,6 +60,12 @@ struct ToleranceMergeOptions {
   std::function<std::string(const Block&)> block_defect;  // the export's check of a merged block (decompose():
                                   // RoundedBlockCheck, rounded to the input frame); a merge whose block it
                                   // finds a defect in is not taken. Empty: not checked. Called in parallel
+  const std::vector<char>* focus = nullptr;   // per input block: when set, only pairs holding a block flagged 1
+                                  // are tried (remove_slivers(): each sliver with its neighbours); a merged
+                                  // block is not flagged. nullptr: every touching pair
+  bool clean_rounding = false;    // a union whose rounding to doubles leaves zero-area or flipped faces gets
+                                  // export's cleanup (clean_rounded_block(), 1e-10 x scale, added to the
+                                  // deviation bound) instead of being rejected (remove_slivers() sets it)
   Progress* progress = nullptr;   // progress and info (nullptr: silent)
 };
 

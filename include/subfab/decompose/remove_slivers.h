@@ -1,0 +1,113 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file remove_slivers.h
+//! No slivers (issue 17, "No slivers"; thesis Section 4.3.4, whose snapping
+//! and merging exist so that no block is too thin to mill or glue): the last
+//! stage of decompose(), after the merges within the tolerance.
+//!
+//! A block is a SLIVER when it is thinner than `min_thickness` where the
+//! model is thicker, decided exactly as validate's check 9 decides it
+//! (find_slivers(): the block's thickness is its smallest mean chord length
+//! along the axes of its frame, block_thickness(); the model's thickness
+//! there is the mean length of the input segments holding the block's
+//! segments on a grid of lines along that axis). decompose() sets
+//! min_thickness = max(1e-4 x diagonal, T), as validate does.
+//!
+//! The rule: within a tolerance T > 0, every sliver is removed when that is
+//! measured within T, in this order:
+//! 1. DROPPED when the model stays within T without it (cheap: two
+//!    bounded-error distances; CGAL's bounded-error Hausdorff distance,
+//!    measure + error bound <= T):
+//!    (a) the faces the drop exposes (a subset of the sliver's surface) lie
+//!        within T of the input surface: one-sided distance from the whole
+//!        sliver surface to the input faces within T of its box;
+//!    (b) the input surface near the sliver (the input faces within T of its
+//!        box) stays within T of another block: one-sided distance to the
+//!        surfaces of the blocks within 2T of its box (a nearest point
+//!        farther away would be farther than T);
+//!    (c) no block that sticks out of the solid lies within 2T of its box
+//!        (where fills meet, (a) and (b) would not describe the surface made).
+//!    Input points farther than T from the sliver's box keep their nearest
+//!    surface point (it was not on the sliver), and the surface made gains
+//!    only the exposed faces, so (a) and (b) bound the whole change. The
+//!    dropped volume is left empty (a dent at most T deep, like the model's
+//!    empty interior). Drops in one pass are more than 2T apart; passes
+//!    repeat while some drop is taken. Typical case: a thin cap lying across
+//!    several blocks, which no single neighbour's milled shape can take
+//!    without colliding with the others.
+//! 2. MERGED into a touching block otherwise: the two replaced by the MILLED
+//!    SHAPE of their union along one of the six directions, under exactly the
+//!    tests of merge_within_tolerance() (closed 2-manifold, exact height
+//!    field, height and machine limits; the model then made measured within
+//!    T by FillDeviationMeter, measure + error bound <= T; no overlap with
+//!    any other block, exact volume <= 1e-6 of the smaller), with a wider
+//!    direction screen, the size caps raised (a sliver is worth a slow
+//!    measure), and a union whose rounding to doubles leaves zero-area faces
+//!    cleaned as export cleans every block (clean_rounded_block(), its
+//!    1e-10 x scale added to the bound) instead of rejected. Only pairs
+//!    holding a sliver are tried. Typical case: a slab reaching past its
+//!    neighbour (a drop would uncover the input there).
+//! A sliver neither removes is kept and reported (decomposition.json
+//! "num_slivers", validate check 9). At T = 0 nothing may deviate and the
+//! exact merges (merge_blocks) have already joined every pair whose union is
+//! a block, so slivers are only counted and reported (none on the statues
+//! measured, bench/RESULTS.md).
+//! Deterministic whatever the thread count.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <string>
+#include <limits>
+#include <vector>
+
+#include "subfab/core/progress.h"
+#include "subfab/decompose/carve_blocks.h"
+#include "subfab/mesh/mesh.h"
+
+namespace subfab {
+
+//! Options of remove_slivers().
+struct SliverRemovalOptions {
+  double min_thickness = 0.0;  // model units (> 0): blocks thinner than this where the model is thicker are slivers
+  double tolerance = 0.0;      // T, model units (>= 0): 0 = exact, slivers are only reported
+  double error_fraction = 0.05;  // error bound of the distance measures, fraction of T, in (0, 1)
+  double max_height = std::numeric_limits<double>::infinity();  // block extent along its axis, model units
+  Vec3 machine_size = Vec3::Constant(std::numeric_limits<double>::infinity());  // X, Y, Z work volume, model units
+  double screen_factor = 4.0;  // merges: a direction is not tried when the material it would leave under a face is
+                               // thicker than this x T (merge_within_tolerance's screen, a heuristic that saves
+                               // time: 4x its default)
+  std::size_t max_pair_faces = 60000;    // a sliver's pair with more faces in all is not tried (merge_within_tolerance's
+                                         // cap, raised 5x)
+  std::size_t max_region_faces = 80000;  // a merge whose deviation would be measured over more input faces is not
+                                         // taken (merge_within_tolerance's cap, raised 4x)
+  const std::vector<char>* filled = nullptr;  // per input block: 1 when it sticks out of the solid; nullptr: none
+  std::function<std::string(const Block&)> block_defect;  // merges: the export's check of a merged block
+                               // (merge_within_tolerance's option of that name); empty: not checked
+  Progress* progress = nullptr;  // progress and info (nullptr: silent)
+};
+
+//! Result of remove_slivers().
+struct SliverRemovalResult {
+  std::vector<Block> blocks;   // exact height fields, canonical frame
+  std::vector<char> filled;    // per block: 1 when it sticks out of the solid (empty when the input's was nullptr
+                               // and nothing was merged)
+  std::size_t num_found = 0;   // slivers among the input blocks
+  std::size_t num_merged = 0;  // merges that absorbed a sliver
+  std::size_t num_dropped = 0; // slivers dropped
+  std::size_t num_left = 0;    // slivers among the output blocks
+  double max_deviation = 0.0;  // largest deviation bound of an applied merge or drop, model units
+};
+
+//! Finds the slivers of `blocks` and merges each into a neighbour within
+//! the tolerance (see the file comment).
+//! \param solid  the solid the blocks were carved from (canonical frame)
+//! \param blocks exact height-field blocks of `solid`, canonical frame
+//! \throw InvalidArgumentError when min_thickness <= 0, T < 0 or the filled flags do not match the blocks.
+SliverRemovalResult remove_slivers(const Mesh& solid, std::vector<Block> blocks, const SliverRemovalOptions& options);
+
+//! Per block of `blocks` (canonical frame): 1 when it is a sliver of
+//! `solid` at `min_thickness` (find_slivers() in the canonical frame, whose
+//! axes are the blocks' machine axes), in parallel.
+std::vector<char> sliver_flags(const Mesh& solid, const std::vector<Block>& blocks, double min_thickness);
+
+}  // namespace subfab

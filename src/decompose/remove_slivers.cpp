@@ -1,0 +1,192 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "subfab/decompose/remove_slivers.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/distance.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "decompose/block_pairs_detail.h"
+#include "geometry/surface_deviation.h"
+#include "subfab/core/error.h"
+#include "subfab/core/parallel.h"
+#include "subfab/decompose/merge_within_tolerance.h"
+#include "subfab/validate/find_slivers.h"
+
+namespace subfab {
+namespace {
+
+namespace PMP = CGAL::Polygon_mesh_processing;
+
+BoundingBox widened(BoundingBox box, double margin) {
+  box.min.array() -= margin;
+  box.max.array() += margin;
+  return box;
+}
+
+//! The faces of `mesh` whose bounding box meets `box`.
+std::vector<int> faces_meeting(const Mesh& mesh, const BoundingBox& box) {
+  std::vector<int> out;
+  for (std::size_t f = 0; f < mesh.num_faces(); ++f) {
+    BoundingBox fb;
+    for (int v : mesh.faces[f]) fb.extend(mesh.vertices[static_cast<std::size_t>(v)]);
+    if (detail::boxes_touch(fb, box)) out.push_back(static_cast<int>(f));
+  }
+  return out;
+}
+
+//! One-sided Hausdorff distance from `from` to `to` within `error` (CGAL's
+//! bounded-error algorithm); infinity when `to` is empty, 0 when `from` is.
+double hausdorff(const detail::DistanceMesh& from, const detail::DistanceMesh& to, double error) {
+  if (from.number_of_faces() == 0) return 0.0;
+  if (to.number_of_faces() == 0) return std::numeric_limits<double>::infinity();
+  const auto no_match = PMP::parameters::match_faces(false);
+  return PMP::bounded_error_Hausdorff_distance<CGAL::Sequential_tag>(from, to, error, no_match, no_match);
+}
+
+//! The bound (measures + error) of the deviation that dropping sliver `b`
+//! causes (see remove_slivers.h), or infinity when it may not be dropped
+//! (a block sticking out of the solid lies within 2T of it).
+double drop_bound(const Mesh& solid, const std::vector<Block>& blocks, const std::vector<BoundingBox>& boxes,
+                  const std::vector<char>& filled, std::size_t b, double tolerance, double error) {
+  const double inf = std::numeric_limits<double>::infinity();
+  const BoundingBox near = widened(boxes[b], 2.0 * tolerance);
+  detail::DistanceMesh others;
+  for (std::size_t k = 0; k < blocks.size(); ++k) {
+    if (k == b || !detail::boxes_touch(boxes[k], near)) continue;
+    if (!filled.empty() && filled[k]) return inf;
+    detail::append_distance_patch(others, blocks[k].mesh, nullptr);
+  }
+  const std::vector<int> q = faces_meeting(solid, widened(boxes[b], tolerance));
+  detail::DistanceMesh sliver, input_near;
+  detail::append_distance_patch(sliver, blocks[b].mesh, nullptr);
+  detail::append_distance_patch(input_near, solid, &q);
+  // (a) the faces the drop exposes lie on the sliver's surface: within T of the input surface.
+  const double exposed = hausdorff(sliver, input_near, error);
+  if (!(exposed + error <= tolerance)) return inf;
+  // (b) the input surface near the sliver stays within T of another block.
+  const double covered = hausdorff(input_near, others, error);
+  return std::max(exposed, covered) + error;
+}
+
+}  // namespace
+
+std::vector<char> sliver_flags(const Mesh& solid, const std::vector<Block>& blocks, double min_thickness) {
+  std::vector<SliverBlock> sb(blocks.size());
+  for (std::size_t i = 0; i < blocks.size(); ++i) sb[i].mesh = &blocks[i].mesh;  // identity frame: canonical axes
+  std::vector<char> flags(blocks.size(), 0);
+  if (blocks.empty()) return flags;
+  const std::vector<SliverMeasure> m = find_slivers(solid, sb, {.min_thickness = min_thickness});
+  for (std::size_t i = 0; i < m.size(); ++i) flags[i] = m[i].sliver ? 1 : 0;
+  return flags;
+}
+
+SliverRemovalResult remove_slivers(const Mesh& solid, std::vector<Block> blocks, const SliverRemovalOptions& options) {
+  if (!(options.min_thickness > 0) || !std::isfinite(options.min_thickness))
+    throw InvalidArgumentError("remove_slivers: min_thickness must be a positive length (model units)");
+  if (!(options.tolerance >= 0) || !std::isfinite(options.tolerance))
+    throw InvalidArgumentError("remove_slivers: the tolerance must be a length >= 0");
+  if (!(options.error_fraction > 0 && options.error_fraction < 1))
+    throw InvalidArgumentError("remove_slivers: the error fraction must lie in (0, 1)");
+  if (options.filled && options.filled->size() != blocks.size())
+    throw InvalidArgumentError("remove_slivers: one filled flag per block expected");
+  StageScope stage(options.progress, "slivers");
+  SliverRemovalResult result;
+  if (options.filled) result.filled = *options.filled;
+  std::vector<char> flags = sliver_flags(solid, blocks, options.min_thickness);
+  result.num_found = static_cast<std::size_t>(std::count(flags.begin(), flags.end(), char{1}));
+  result.num_left = result.num_found;
+  if (result.num_found == 0 || options.tolerance == 0) {
+    if (options.progress && result.num_found > 0)
+      options.progress->warn(std::to_string(result.num_found) + " sliver block(s) thinner than " +
+                             std::to_string(options.min_thickness) +
+                             " model units where the model is thicker (exact decomposition: nothing may deviate, "
+                             "they are kept; validate check 9 lists them)");
+    result.blocks = std::move(blocks);
+    return result;
+  }
+  result.blocks = std::move(blocks);
+  const double error = options.error_fraction * options.tolerance;
+  // 1. Drops of the slivers the model does without, measured within the
+  //    tolerance (cheap: two bounded-error distances each). A drop changes
+  //    what covers its neighbourhood: per pass, only slivers farther than 2T
+  //    from every block dropped in it (in block order).
+  const auto drop_passes = [&] {
+    for (int pass = 0; pass < 4; ++pass) {
+      flags = sliver_flags(solid, result.blocks, options.min_thickness);
+      std::vector<std::size_t> slivers;
+      for (std::size_t i = 0; i < flags.size(); ++i)
+        if (flags[i]) slivers.push_back(i);
+      if (slivers.empty()) return;
+      const std::vector<BoundingBox> boxes = detail::block_boxes(result.blocks);
+      std::vector<double> bound(slivers.size());
+      parallel_for(0, slivers.size(), [&](std::size_t s) {
+        bound[s] = drop_bound(solid, result.blocks, boxes, result.filled, slivers[s], options.tolerance, error);
+      });
+      std::vector<char> drop(result.blocks.size(), 0);
+      std::vector<BoundingBox> dropped;
+      for (std::size_t s = 0; s < slivers.size(); ++s) {
+        if (!(bound[s] <= options.tolerance)) continue;
+        const BoundingBox reach = widened(boxes[slivers[s]], 2.0 * options.tolerance);
+        if (std::any_of(dropped.begin(), dropped.end(), [&](const BoundingBox& d) { return detail::boxes_touch(d, reach); }))
+          continue;  // measured again next pass
+        dropped.push_back(reach);
+        drop[slivers[s]] = 1;
+        result.max_deviation = std::max(result.max_deviation, bound[s]);
+      }
+      if (dropped.empty()) return;
+      result.num_dropped += dropped.size();
+      std::vector<Block> kept;
+      std::vector<char> kept_filled;
+      for (std::size_t i = 0; i < result.blocks.size(); ++i)
+        if (!drop[i]) {
+          kept.push_back(std::move(result.blocks[i]));
+          if (!result.filled.empty()) kept_filled.push_back(result.filled[i]);
+        }
+      result.blocks = std::move(kept);
+      result.filled = std::move(kept_filled);
+    }
+  };
+  drop_passes();
+  // 2. Merges of each sliver left with a neighbour, within the tolerance.
+  flags = sliver_flags(solid, result.blocks, options.min_thickness);
+  if (std::count(flags.begin(), flags.end(), char{1}) > 0) {
+    ToleranceMergeOptions to;
+    to.tolerance = options.tolerance;
+    to.error_fraction = options.error_fraction;
+    to.max_height = options.max_height;
+    to.machine_size = options.machine_size;
+    to.screen_factor = options.screen_factor;
+    to.max_pair_faces = options.max_pair_faces;
+    to.max_region_faces = options.max_region_faces;
+    if (!result.filled.empty()) to.filled = &result.filled;
+    to.focus = &flags;
+    to.clean_rounding = true;
+    to.block_defect = options.block_defect;
+    to.progress = options.progress;
+    ToleranceMergeResult merged = merge_within_tolerance(solid, std::move(result.blocks), to);
+    result.num_merged = merged.num_merges;
+    result.max_deviation = std::max(result.max_deviation, merged.max_deviation);
+    result.blocks = std::move(merged.blocks);
+    result.filled = std::move(merged.filled);
+  }
+  flags = sliver_flags(solid, result.blocks, options.min_thickness);
+  result.num_left = static_cast<std::size_t>(std::count(flags.begin(), flags.end(), char{1}));
+  if (options.progress) {
+    options.progress->info(std::to_string(result.num_found) + " sliver block(s) thinner than " +
+                           std::to_string(options.min_thickness) + " model units: " +
+                           std::to_string(result.num_merged) + " merged into a neighbour and " +
+                           std::to_string(result.num_dropped) + " dropped within the tolerance, " +
+                           std::to_string(result.num_left) + " left");
+    if (result.num_left > 0)
+      options.progress->warn(std::to_string(result.num_left) +
+                             " sliver block(s) neither merge nor drop keeps within the tolerance are kept "
+                             "(validate check 9 lists them)");
+  }
+  return result;
+}
+
+}  // namespace subfab

@@ -1,0 +1,56 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// `subfab decompose` reports its sliver stage (issue 17, "No slivers").
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "support/test_support.h"
+
+namespace subfab {
+namespace {
+
+namespace fs = std::filesystem;
+using test::quoted;
+using test::run_subfab;
+
+nlohmann::json summary_of(const fs::path& folder) {
+  std::ifstream in(folder / "decomposition.json");
+  return nlohmann::json::parse(in).at("summary");
+}
+
+TEST(DecomposeSliversCli, TheSliverThresholdAndCountsAreRecordedAndValidated) {
+  const fs::path dir = test::temp_dir();
+  const fs::path mesh = test::data_path("regression/cube_tiny_diagonal_spike.obj");
+  const auto within = run_subfab("decompose " + quoted(mesh) + " -o " + quoted(dir / "within") +
+                                 " --tolerance 5e-4 --json");
+  ASSERT_EQ(within.exit_code, 0) << within.output;
+  const nlohmann::json out = nlohmann::json::parse(within.output.substr(within.output.find('{')));
+  const nlohmann::json s = summary_of(dir / "within");
+  const double diagonal = nlohmann::json::parse(std::ifstream(dir / "within" / "decomposition.json"))
+                              .at("input").at("bbox_diagonal").get<double>();
+  // The threshold is max(1e-4 x diagonal, T) = T here, as validate's check 9.
+  EXPECT_NEAR(s.at("sliver_thickness").get<double>(), 5e-4 * diagonal, 1e-12 * diagonal);
+  EXPECT_EQ(s.at("num_slivers").get<int>(), 0);
+  EXPECT_EQ(out.at("num_slivers").get<int>(), 0);
+  EXPECT_EQ(out.at("num_slivers_merged").get<int>() + out.at("num_slivers_dropped").get<int>(),
+            s.at("num_slivers_merged").get<int>() + s.at("num_slivers_dropped").get<int>());
+  const auto valid = run_subfab("validate " + quoted(mesh) + " " + quoted(dir / "within"));
+  EXPECT_EQ(valid.exit_code, 0) << valid.output;
+  EXPECT_NE(valid.output.find("PASS  no slivers"), std::string::npos) << valid.output;
+  // Exact: the threshold is 1e-4 x diagonal, nothing is removed.
+  const fs::path joint = test::data_path("joint.off");
+  const auto exact = run_subfab("decompose " + quoted(joint) + " -o " + quoted(dir / "exact") + " --quiet");
+  ASSERT_EQ(exact.exit_code, 0) << exact.output;
+  const nlohmann::json e = summary_of(dir / "exact");
+  const double joint_diagonal = nlohmann::json::parse(std::ifstream(dir / "exact" / "decomposition.json"))
+                                    .at("input").at("bbox_diagonal").get<double>();
+  EXPECT_NEAR(e.at("sliver_thickness").get<double>(), 1e-4 * joint_diagonal, 1e-12 * joint_diagonal);
+  EXPECT_EQ(e.at("num_slivers").get<int>(), 0);
+  EXPECT_EQ(e.at("num_slivers_merged").get<int>(), 0);
+  EXPECT_EQ(e.at("num_slivers_dropped").get<int>(), 0);
+}
+
+}  // namespace
+}  // namespace subfab

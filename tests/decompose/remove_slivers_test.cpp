@@ -1,0 +1,148 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "subfab/decompose/remove_slivers.h"
+
+#include <gtest/gtest.h>
+
+#include <utility>
+
+#include "subfab/core/error.h"
+#include "subfab/validate/validate_decomposition.h"
+#include "support/block_test_shapes.h"
+#include "support/test_shapes.h"
+
+namespace subfab {
+namespace {
+
+using test::box_solid;
+
+//! The 10 x 10 x 10 box N with a slab S 0.3 thick lying on it (the solid
+//! [0, 10]^2 x [0, 10.3]), as two blocks along +z.
+std::pair<Mesh, std::vector<Block>> capped_box() {
+  return {box_solid({0, 0, 0}, {10, 10, 10.3}),
+          {Block{box_solid({0, 0, 0}, {10, 10, 10}), Axis::PosZ, 0},
+           Block{box_solid({0, 0, 10}, {10, 10, 10.3}), Axis::PosZ, 1}}};
+}
+
+//! The same box with the slab reaching 2 past it in +x (a ledge 0.3 thick,
+//! 2 wide, over nothing): the solid is the L-shaped profile
+//! (0,0) (10,0) (10,10) (12,10) (12,10.3) (0,10.3) in x, z, extruded over
+//! y in [0, 10].
+std::pair<Mesh, std::vector<Block>> ledged_box() {
+  Mesh profile = test::extrude_polygon({{0, 0}, {10, 0}, {10, 10}, {12, 10}, {12, 10.3}, {0, 10.3}},
+                                       {{0, 1, 2}, {0, 2, 5}, {2, 3, 4}, {2, 4, 5}}, 0, 10);
+  for (Vec3& v : profile.vertices) v = Vec3(v.x(), v.z(), v.y());  // (x, z, y) -> (x, y, z): a reflection
+  return {test::flipped(profile),
+          {Block{box_solid({0, 0, 0}, {10, 10, 10}), Axis::PosZ, 0},
+           Block{box_solid({0, 0, 10}, {12, 10, 10.3}), Axis::PosZ, 1}}};
+}
+
+TEST(RemoveSlivers, ATestShapeIsAValidSolid) {
+  for (const Mesh& m : {capped_box().first, ledged_box().first}) {
+    EXPECT_TRUE(check_closed_solid(m).ok());
+    EXPECT_GT(signed_volume(m), 0.0);
+  }
+  EXPECT_NEAR(signed_volume(ledged_box().first), 1000.0 + 12 * 10 * 0.3, 1e-9);
+}
+
+TEST(RemoveSlivers, AThinCapWithinTheToleranceIsDroppedAndKeptBelowIt) {
+  // T = 0.5 > 0.3: the cap is a sliver (0.3 thick where the model is 10.3),
+  // and without it the model stays within 0.3 (+ the error bound) of the
+  // input: its faces are 0.3 from the input's top, and the input's top is
+  // 0.3 above N's. It is dropped.
+  auto [solid, blocks] = capped_box();
+  SliverRemovalOptions o;
+  o.tolerance = 0.5;
+  o.min_thickness = 0.5;
+  const SliverRemovalResult r = remove_slivers(solid, blocks, o);
+  EXPECT_EQ(r.num_found, 1u);
+  EXPECT_EQ(r.num_dropped, 1u);
+  EXPECT_EQ(r.num_merged, 0u);
+  EXPECT_EQ(r.num_left, 0u);
+  ASSERT_EQ(r.blocks.size(), 1u);
+  EXPECT_NEAR(signed_volume(r.blocks[0].mesh), 1000.0, 1e-9);  // N kept as it was
+  EXPECT_GE(r.max_deviation, 0.3 - 1e-12);
+  EXPECT_LE(r.max_deviation, 0.3 + 2 * 0.05 * 0.5);  // the measures' error bound, twice at most
+  // T = 0.2 < 0.3: the cap is no sliver (validate's threshold max(1e-4 x
+  // diagonal, T) = T), both blocks stay.
+  o.tolerance = 0.2;
+  o.min_thickness = 0.2;
+  const SliverRemovalResult below = remove_slivers(solid, blocks, o);
+  EXPECT_EQ(below.num_found, 0u);
+  EXPECT_EQ(below.blocks.size(), 2u);
+  // Exact (T = 0) with a threshold above 0.3: a sliver, counted and kept.
+  o.tolerance = 0.0;
+  o.min_thickness = 0.5;
+  const SliverRemovalResult exact = remove_slivers(solid, blocks, o);
+  EXPECT_EQ(exact.num_found, 1u);
+  EXPECT_EQ(exact.num_left, 1u);
+  EXPECT_EQ(exact.blocks.size(), 2u);
+}
+
+TEST(RemoveSlivers, ASliverReachingPastItsNeighbourIsMergedNotDropped) {
+  // The ledge 2 wide over nothing: dropping the slab would leave its
+  // underside 2 > T from any block, so it is not dropped; the union of the
+  // two blocks is an exact height field along -z (base on top), so it is
+  // merged with no deviation.
+  auto [solid, blocks] = ledged_box();
+  SliverRemovalOptions o;
+  o.tolerance = 0.5;
+  o.min_thickness = 0.5;
+  const SliverRemovalResult r = remove_slivers(solid, blocks, o);
+  EXPECT_EQ(r.num_found, 1u);
+  EXPECT_EQ(r.num_dropped, 0u);
+  EXPECT_EQ(r.num_merged, 1u);
+  EXPECT_EQ(r.num_left, 0u);
+  ASSERT_EQ(r.blocks.size(), 1u);
+  const Block& b = r.blocks[0];
+  EXPECT_TRUE(check_closed_solid(b.mesh).ok());
+  EXPECT_TRUE(is_height_field(b.mesh, axis_direction(b.axis)));
+  EXPECT_NEAR(signed_volume(b.mesh), 1036.0, 1e-9);
+  EXPECT_EQ(r.max_deviation, 0.0);
+  // Below the tolerance it is no sliver: two blocks.
+  o.tolerance = 0.2;
+  o.min_thickness = 0.2;
+  EXPECT_EQ(remove_slivers(solid, blocks, o).blocks.size(), 2u);
+}
+
+TEST(RemoveSlivers, ASliverNeitherMergeNorDropKeepsWithinTheLimitsIsKeptAndCounted) {
+  // A height limit of 9 forbids every union (extents 12, 10, 10.3), and the
+  // drop uncovers the ledge: the sliver stays, reported.
+  auto [solid, blocks] = ledged_box();
+  SliverRemovalOptions o;
+  o.tolerance = 0.5;
+  o.min_thickness = 0.5;
+  o.max_height = 9.0;
+  const SliverRemovalResult r = remove_slivers(solid, blocks, o);
+  EXPECT_EQ(r.num_found, 1u);
+  EXPECT_EQ(r.num_left, 1u);
+  EXPECT_EQ(r.blocks.size(), 2u);
+}
+
+TEST(RemoveSlivers, AThinBlockWhereTheModelIsThinIsNoSliver) {
+  // A plate 0.3 thick cut in two: each half is as thin as the model.
+  const Mesh plate = box_solid({0, 0, 0}, {10, 10, 0.3});
+  const std::vector<Block> halves{Block{box_solid({0, 0, 0}, {5, 10, 0.3}), Axis::PosZ, 0},
+                                  Block{box_solid({5, 0, 0}, {10, 10, 0.3}), Axis::PosZ, 1}};
+  SliverRemovalOptions o;
+  o.tolerance = 0.5;
+  o.min_thickness = 0.5;
+  const SliverRemovalResult r = remove_slivers(plate, halves, o);
+  EXPECT_EQ(r.num_found, 0u);
+  EXPECT_EQ(r.blocks.size(), 2u);
+}
+
+TEST(RemoveSlivers, RejectsBadOptions) {
+  auto [solid, blocks] = capped_box();
+  EXPECT_THROW(remove_slivers(solid, blocks, {}), InvalidArgumentError);  // min_thickness 0
+  SliverRemovalOptions o;
+  o.min_thickness = 0.5;
+  o.tolerance = -1;
+  EXPECT_THROW(remove_slivers(solid, blocks, o), InvalidArgumentError);
+  o.tolerance = 0.5;
+  const std::vector<char> wrong(3, 0);
+  o.filled = &wrong;
+  EXPECT_THROW(remove_slivers(solid, blocks, o), InvalidArgumentError);
+}
+
+}  // namespace
+}  // namespace subfab
