@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cmath>
+#include <set>
 
 #include "subfab/core/error.h"
 #include "subfab/decompose/decompose.h"
@@ -146,6 +147,61 @@ TEST(ToleranceAllowances, AnAllowanceTheMeasureRefutesIsLoweredAndTheResultStays
   EXPECT_EQ(t.blocks.size(), exact);
   EXPECT_LE(t.deviation_bound, 0.9);
   for (const Block& b : t.blocks) EXPECT_TRUE(is_height_field(b.mesh, axis_direction(b.axis)));
+}
+
+
+//! A 10 x 10 plate (z in [0, 1]), a 4 x 4 core (z in [1, 8]) and a 10 x 10
+//! slab (z in [8, 12]) whose rim hangs 1 lower (a lip: the outer ring of
+//! cells at z in [7, 8]). Under the slab, between the lip and the core, the
+//! ceiling (z = 8, facing -z) has a free column 7 deep down to the plate:
+//! its undercut depth is 7. Exactly: the slab (+z, base 8), the lip and the
+//! plate with the core: 3 blocks.
+std::set<test::Cell> lipped_slab_cells() {
+  std::set<test::Cell> cells = test::cells_of_box({0, 0, 0}, {10, 10, 1});
+  for (const auto& c : test::cells_of_box({3, 3, 1}, {7, 7, 8})) cells.insert(c);
+  for (const auto& c : test::cells_of_box({0, 0, 8}, {10, 10, 12})) cells.insert(c);
+  for (const auto& c : test::cells_of_box({0, 0, 7}, {10, 10, 8}))
+    if (c[0] == 0 || c[0] == 9 || c[1] == 0 || c[1] == 9) cells.insert(c);
+  return cells;
+}
+
+TEST(ToleranceAllowances, ABaseFloorLetsABlockWhoseBaseLiesJustUnderAShallowOverhangHoldIt) {
+  // A +z block with its base at the lip's bottom (z = 7) fills the ring
+  // under the ceiling 1 deep: its milled shape deviates 1 from the input.
+  // Per face (undercut depth 7 > 2 T) the ceiling may never lean; with base
+  // floors (8 - q T / 1 <= 7) it may in that block: the slab, the lip and
+  // the top of the core become one block, 2 in all, within T = 1.2. Below
+  // the deviation (T = 0.8) the measure refutes that and the blocks stay
+  // exact.
+  const Mesh solid = voxel_mesh(lipped_slab_cells());
+  DecomposeOptions o;
+  o.orient = false;
+  const std::size_t exact = decompose(solid, o).blocks.size();
+  EXPECT_EQ(exact, 3u);
+  o.tolerance_fraction = 1.0;
+  o.tolerance_abs = 1.2;
+  o.tolerance_floor_scale = 1.0;
+  const DecomposeResult floored = decompose(solid, o);
+  EXPECT_EQ(floored.blocks.size(), 2u);
+  EXPECT_GT(floored.num_floored_faces, 0u);
+  EXPECT_GT(floored.deviation_bound, 0.9);  // the filled ring, 1 deep
+  EXPECT_LE(floored.deviation_bound, 1.2);
+  for (const Block& b : floored.blocks) EXPECT_TRUE(is_height_field(b.mesh, axis_direction(b.axis)));
+  ValidationOptions vo;
+  vo.tolerance = floored.tolerance;
+  const ValidationReport report =
+      validate_decomposition(solid, test::to_validation(make_exported_blocks(solid, floored)), vo);
+  for (const CheckReport& c : report.checks)
+    EXPECT_TRUE(c.passed) << c.name << ": " << (c.failures.empty() ? c.summary : c.failures[0]);
+  DecomposeOptions per_face = o;
+  per_face.tolerance_floor_scale = 0.0;
+  const DecomposeResult unfloored = decompose(solid, per_face);
+  EXPECT_EQ(unfloored.num_floored_faces, 0u);
+  EXPECT_EQ(unfloored.blocks.size(), exact);
+  o.tolerance_abs = 0.8;
+  const DecomposeResult below = decompose(solid, o);
+  EXPECT_EQ(below.blocks.size(), exact);
+  EXPECT_LE(below.deviation_bound, 0.8);
 }
 
 
