@@ -39,6 +39,7 @@ struct DecomposeArgs {
   double max_overhang = 0.0;
   double tolerance = 0.0;
   double tolerance_abs = std::numeric_limits<double>::infinity();
+  double tolerance_floors = DecomposeOptions{}.tolerance_floor_scale;
   std::optional<double> smooth;  // --smooth [F]: smoothing cap, fraction of the diagonal
   bool no_view = false;
   RepairInputOptions repair;
@@ -96,6 +97,7 @@ int run_decompose(const DecomposeArgs& args) {
   options.max_overhang_deg = args.max_overhang;
   options.tolerance_fraction = args.tolerance;
   options.tolerance_abs = args.tolerance_abs;
+  options.tolerance_floor_scale = args.tolerance_floors;
 
   ConsoleProgress progress(std::cerr, args.common.quiet, stderr_is_terminal());
   options.progress = &progress;
@@ -300,6 +302,11 @@ void add_decompose_options(CLI::App& sub, DecomposeArgs& args) {
       ->check(CLI::NonNegativeNumber);
   sub.add_option("--tolerance-abs", args.tolerance_abs,
                  "Deviation allowed in model units (with --tolerance the smaller wins)")
+      ->check(CLI::NonNegativeNumber);
+  sub.add_option("--tolerance-floors", args.tolerance_floors,
+                 "Within a tolerance T: also let a face whose undercut is deeper than q x T lean past vertical in "
+                 "the blocks whose base lies at most S x q x T / |n.d| under it (the fill there is that short; "
+                 "S = this, 0 = per face only; experimental, see bench/RESULTS.md)")
       ->check(CLI::NonNegativeNumber);
   sub.add_option("--smooth", args.smooth,
                  "Fewer blocks for a detailed model (thesis 4.3.5): smooth it (Taubin low-pass, as `subfab smooth`, "

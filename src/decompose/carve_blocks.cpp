@@ -32,7 +32,8 @@ CarveResult carve_blocks(const Mesh& solid, const std::vector<HeightBox>& ordere
   Progress* progress = options.progress;
   if (!(options.contact_move > 0) || options.max_contact_rounds < 0)
     throw InvalidArgumentError("carve_blocks: contact_move must be positive and max_contact_rounds >= 0");
-  const detail::SolidIndex index(solid, overhang_sine(options.max_overhang_deg), options.allowed_overhangs);
+  const detail::SolidIndex index(solid, overhang_sine(options.max_overhang_deg), options.allowed_overhangs,
+                                 options.overhang_floors);
   HeightFieldOptions height_field;
   height_field.normal_tolerance = height_field_normal_tolerance(options.max_overhang_deg);
   if (options.allowed_overhangs) {  // the allowed faces may lean as far as they do (their undercuts are measured later)

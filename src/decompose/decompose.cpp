@@ -60,6 +60,8 @@ void check_options(const DecomposeOptions& o) {
   if (std::isnan(o.tolerance_abs) || o.tolerance_abs < 0)
     throw InvalidArgumentError("--tolerance-abs must be a length in model units >= 0");
   if (o.tolerance_rounds < 1) throw InvalidArgumentError("tolerance_rounds must be at least 1");
+  if (!(o.tolerance_floor_scale >= 0) || !std::isfinite(o.tolerance_floor_scale))
+    throw InvalidArgumentError("tolerance_floor_scale must be a non-negative finite number");
   if (o.tolerance_depth_fractions.empty() ||
       !std::all_of(o.tolerance_depth_fractions.begin(), o.tolerance_depth_fractions.end(),
                    [](double q) { return q > 0 && std::isfinite(q); }))
@@ -121,14 +123,18 @@ Mesh repaired_in_input_frame(const Mesh& input, const Mesh& canonical, const Mes
 
 //! Stages 2 to 6 of decompose() on `solid` (canonical frame): fields,
 //! grow, cover, snap, resolve and carve, under the overhang allowances
-//! `allowed` (per face of `solid`; nullptr: none). Sets result.canonical to
+//! `allowed` (per face of `solid`, with their base floors; nullptr: none).
+//! Sets result.canonical to
 //! the refined solid and adds the stages' statistics and times to `result`.
-std::vector<Block> carve_stages(const Mesh& solid, const std::vector<std::uint8_t>* allowed, const Mesh& input,
+std::vector<Block> carve_stages(const Mesh& solid, const OverhangAllowances* allowances, const Mesh& input,
                                 const DecomposeOptions& options, DecomposeResult& result) {
   Progress* progress = options.progress;
   const double overhang = options.max_overhang_deg;
   const Vec3 machine = options.machine ? *options.machine : Vec3::Constant(std::numeric_limits<double>::infinity());
-  // 2. fields (4.3.2)
+  const std::vector<std::uint8_t>* allowed = allowances ? &allowances->bits : nullptr;
+  const std::vector<std::array<double, 3>>* floors = allowances ? &allowances->floors : nullptr;
+  // 2. fields (4.3.2); a face allowed in some box counts as facing (the
+  //    field only guides grow, which checks the floors exactly)
   std::array<HeightField, 6> fields;
   {
     StageScope stage(progress, "field");
@@ -156,6 +162,7 @@ std::vector<Block> carve_stages(const Mesh& solid, const std::vector<std::uint8_
     o.machine_size = machine;
     o.fields = &fields;
     o.allowed_overhangs = allowed;
+    o.overhang_floors = floors;
     o.max_overhang_deg = overhang;
     o.progress = progress;
     grown = grow_boxes(solid, o);
@@ -166,9 +173,14 @@ std::vector<Block> carve_stages(const Mesh& solid, const std::vector<std::uint8_
   result.canonical = grown.mesh;
   // The allowances of the refined mesh: a face inherits its parent's.
   std::vector<std::uint8_t> grown_allowed;
-  if (allowed)
-    for (int parent : grown.parent_face) grown_allowed.push_back((*allowed)[static_cast<std::size_t>(parent)]);
-  const std::vector<std::uint8_t>* refined_allowed = allowed ? &grown_allowed : nullptr;
+  std::vector<std::array<double, 3>> grown_floors;
+  if (allowances)
+    for (int parent : grown.parent_face) {
+      grown_allowed.push_back(allowances->bits[static_cast<std::size_t>(parent)]);
+      grown_floors.push_back(allowances->floors[static_cast<std::size_t>(parent)]);
+    }
+  const std::vector<std::uint8_t>* refined_allowed = allowances ? &grown_allowed : nullptr;
+  const std::vector<std::array<double, 3>>* refined_floors = allowances ? &grown_floors : nullptr;
 
   // 4. minimal cover (4.3.2, ILP with CBC), 5. snap and shrink (4.3.4) and
   //    resolve overlaps (4.3.3: conflict graph, cycle splits, carve order),
@@ -179,7 +191,7 @@ std::vector<Block> carve_stages(const Mesh& solid, const std::vector<std::uint8_
   //    (ties: the first). Snap and resolve are timed as "resolve".
   std::vector<HeightBox> ordered;
   {
-    const detail::SolidIndex piece_index(result.canonical, overhang_sine(overhang), refined_allowed);
+    const detail::SolidIndex piece_index(result.canonical, overhang_sine(overhang), refined_allowed, refined_floors);
     const std::vector<int> neighbours = detail::face_neighbours(result.canonical);
     const bool one_piece_each = std::all_of(grown.num_pieces.begin(), grown.num_pieces.end(), [](int p) { return p == 1; });
     std::size_t best_pieces = std::numeric_limits<std::size_t>::max();
@@ -210,6 +222,7 @@ std::vector<Block> carve_stages(const Mesh& solid, const std::vector<std::uint8_
         o.machine_size = machine;
         o.max_overhang_deg = overhang;
         o.allowed_overhangs = refined_allowed;
+        o.overhang_floors = refined_floors;
         o.progress = progress;
         selected = snap_and_shrink(result.canonical, std::move(selected), o).boxes;
         result.timings.resolve += seconds_since(t);
@@ -219,6 +232,7 @@ std::vector<Block> carve_stages(const Mesh& solid, const std::vector<std::uint8_
       ResolveOptions o;
       o.max_overhang_deg = overhang;
       o.allowed_overhangs = refined_allowed;
+      o.overhang_floors = refined_floors;
       o.progress = progress;
       ResolveResult r = resolve_overlaps(result.canonical, std::move(selected), o);
       std::vector<std::size_t> pieces(r.ordered.size());
@@ -250,6 +264,7 @@ std::vector<Block> carve_stages(const Mesh& solid, const std::vector<std::uint8_
   co.machine_size = machine;
   co.max_overhang_deg = overhang;
   co.allowed_overhangs = refined_allowed;
+  co.overhang_floors = refined_floors;
   co.progress = progress;
   CarveResult carved = carve_blocks(result.canonical, ordered, co);
   result.ordered_boxes = std::move(ordered);
@@ -426,15 +441,27 @@ bool stages_within_tolerance(const Mesh& solid, const std::vector<std::array<dou
   Progress* progress = options.progress;
   const std::vector<double>& fractions = options.tolerance_depth_fractions;
   std::vector<std::array<std::uint8_t, 3>> level(solid.num_faces(), {0, 0, 0});
-  std::vector<std::uint8_t> allowed = allowances_at(depths, level, fractions, result.tolerance);
-  const std::vector<std::uint8_t> last = pinned.empty() ? std::vector<std::uint8_t>(solid.num_faces(), 0) : pinned;
-  result.num_allowed_faces = count_allowed_faces(allowed);
+  const double floor_scale = options.tolerance_floor_scale;
+  const bool with_floors = floor_scale > 0;
+  OverhangAllowances allowed = allowances_with_floors(solid, depths, level, fractions, result.tolerance, floor_scale);
+  OverhangAllowances last;
+  last.bits = pinned.empty() ? std::vector<std::uint8_t>(solid.num_faces(), 0) : pinned;
+  last.floors.assign(solid.num_faces(), {-std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+                                         -std::numeric_limits<double>::infinity()});
+  const auto count_everywhere = [](const OverhangAllowances& a) {
+    return count_allowed_faces(a.bits) - count_floored_faces(a);
+  };
+  result.num_floored_faces = count_floored_faces(allowed);
+  result.num_allowed_faces = count_everywhere(allowed);
   if (progress)
     progress->info(std::to_string(result.num_allowed_faces) + " of " + std::to_string(solid.num_faces()) +
                    " faces may lean past vertical (undercut within " + std::to_string(fractions.front()) +
-                   " x the tolerance)");
+                   " x the tolerance)" +
+                   (with_floors ? ", " + std::to_string(result.num_floored_faces) +
+                                      " more in boxes whose base lies close enough under them"
+                                : std::string()));
   for (int round = 0;; ++round) {
-    const std::size_t num_allowed = count_allowed_faces(allowed);
+    const std::size_t num_allowed = count_allowed_faces(allowed.bits);
     blocks = carve_stages(solid, num_allowed > 0 ? &allowed : nullptr, input, options, result);
     if (num_allowed == 0) return true;
     ++result.num_tolerance_rounds;
@@ -450,9 +477,9 @@ bool stages_within_tolerance(const Mesh& solid, const std::vector<std::array<dou
     if (round + 1 >= options.tolerance_rounds) {
       allowed = last;
     } else {
-      const std::vector<std::uint8_t> previous = allowed;
-      lower_allowances(solid, milled, allowed, pinned, level);
-      allowed = allowances_at(depths, level, fractions, result.tolerance);
+      const OverhangAllowances previous = allowed;
+      lower_allowances(solid, milled, allowed.bits, pinned, level);
+      allowed = allowances_with_floors(solid, depths, level, fractions, result.tolerance, floor_scale);
       if (allowed == previous) allowed = last;  // the failing blocks meet pinned allowances only
     }
     if (progress) {
@@ -460,9 +487,9 @@ bool stages_within_tolerance(const Mesh& solid, const std::vector<std::array<dou
       for (std::size_t i = 0; i < milled.failures.size() && first.empty(); ++i)
         if (!milled.failures[i].empty()) first = "block " + std::to_string(i + 1) + ": " + milled.failures[i];
       progress->info(std::to_string(milled.num_failed()) + " block(s) beyond the tolerance (" + first + "); " +
-                     std::to_string(before - count_allowed_faces(allowed)) +
-                     " faces lose allowances, decomposing again with " + std::to_string(count_allowed_faces(allowed)) +
-                     " faces allowed");
+                     std::to_string(before - count_allowed_faces(allowed.bits)) +
+                     " faces lose allowances, decomposing again with " + std::to_string(count_everywhere(allowed)) +
+                     " faces allowed (" + std::to_string(count_floored_faces(allowed)) + " more above base floors)");
     }
   }
 }
@@ -576,7 +603,14 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
   if (result.tolerance > 0 && !filled.empty()) {
     DecomposeResult exact = base;
     const bool any_pinned = count_allowed_faces(pinned) > 0;
-    std::vector<Block> exact_blocks = carve_stages(solid, any_pinned ? &pinned : nullptr, input, options, exact);
+    OverhangAllowances pinned_only;
+    if (any_pinned) {
+      pinned_only.bits = pinned;
+      pinned_only.floors.assign(solid.num_faces(), {-std::numeric_limits<double>::infinity(),
+                                                    -std::numeric_limits<double>::infinity(),
+                                                    -std::numeric_limits<double>::infinity()});
+    }
+    std::vector<Block> exact_blocks = carve_stages(solid, any_pinned ? &pinned_only : nullptr, input, options, exact);
     std::vector<char> exact_filled;
     bool usable = true;
     if (any_pinned) {
@@ -603,6 +637,7 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
     t.tolerance += a.tolerance - b.tolerance;
     if (usable && exact.blocks.size() <= result.blocks.size()) {
       exact.num_allowed_faces = result.num_allowed_faces;
+      exact.num_floored_faces = result.num_floored_faces;
       exact.num_tolerance_rounds = result.num_tolerance_rounds;
       result = std::move(exact);
       filled = std::move(exact_filled);

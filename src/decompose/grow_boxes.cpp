@@ -233,7 +233,11 @@ class Grower {
     const double clamped = limits_.clamp(b, axis, dim, side, target);
     Box3 moved = b;
     (side > 0 ? moved.max[dim] : moved.min[dim]) = clamped;
-    if (grid_says_valid(moved, axis)) {  // same answer as push_face, without the exact queries
+    // Same answer as push_face without its exact queries: no face blocks by
+    // the grid, and no face allowed only above a base floor (the field counts
+    // those as facing) blocks exactly.
+    if (grid_says_valid(moved, axis) &&
+        (!index_.has_conditional_faces(axis) || index_.conditional_faces_allow(moved, axis))) {
       (side > 0 ? b.max[dim] : b.min[dim]) = clamped;
       return clamped == target;
     }
@@ -405,6 +409,16 @@ GrowResult grow_boxes(const Mesh& mesh, const GrowOptions& options) {
     for (int parent : r.parent_face) a.push_back((*options.allowed_overhangs)[static_cast<std::size_t>(parent)]);
     return a;
   };
+  // Their base floors (a part of a face lies no higher than the face).
+  if (options.overhang_floors && (!options.allowed_overhangs || options.overhang_floors->size() != mesh.num_faces()))
+    throw InvalidArgumentError("grow_boxes: base floors need the allowances, one per face");
+  const auto floors_of = [&](const GrowResult& r) {
+    std::vector<std::array<double, 3>> a;
+    if (!options.overhang_floors) return a;
+    a.reserve(r.parent_face.size());
+    for (int parent : r.parent_face) a.push_back((*options.overhang_floors)[static_cast<std::size_t>(parent)]);
+    return a;
+  };
   const std::array<HeightField, 6>& fields = options.fields ? *options.fields : own_fields;
   const SizeLimits limits{options.max_height, options.machine_size};
   const double sine = overhang_sine(options.max_overhang_deg);
@@ -418,7 +432,9 @@ GrowResult grow_boxes(const Mesh& mesh, const GrowOptions& options) {
 
   for (int level = 0;; ++level) {
     const std::vector<std::uint8_t> allowed = allowances_of(result);
-    const SolidIndex index(result.mesh, sine, options.allowed_overhangs ? &allowed : nullptr);
+    const std::vector<std::array<double, 3>> floors = floors_of(result);
+    const SolidIndex index(result.mesh, sine, options.allowed_overhangs ? &allowed : nullptr,
+                           options.overhang_floors ? &floors : nullptr);
     const Grower grower(index, fields, limits, true);
     const int nf = index.num_faces();
     // Boxes from before a refinement stay valid (same surface); re-check
@@ -557,7 +573,9 @@ GrowResult grow_boxes(const Mesh& mesh, const GrowOptions& options) {
     }
     result.boxes = std::move(unique);
     const std::vector<std::uint8_t> allowed = allowances_of(result);
-    const SolidIndex index(result.mesh, sine, options.allowed_overhangs ? &allowed : nullptr);
+    const std::vector<std::array<double, 3>> floors = floors_of(result);
+    const SolidIndex index(result.mesh, sine, options.allowed_overhangs ? &allowed : nullptr,
+                           options.overhang_floors ? &floors : nullptr);
     if (lists_current) {
       result.covered = std::move(unique_covered);
     } else {

@@ -227,7 +227,8 @@ ResolveResult resolve_overlaps(const SolidIndex& index, std::vector<HeightBox> b
 namespace subfab {
 
 ResolveResult resolve_overlaps(const Mesh& mesh, std::vector<HeightBox> boxes, const ResolveOptions& options) {
-  const detail::SolidIndex index(mesh, overhang_sine(options.max_overhang_deg), options.allowed_overhangs);
+  const detail::SolidIndex index(mesh, overhang_sine(options.max_overhang_deg), options.allowed_overhangs,
+                                 options.overhang_floors);
   return detail::resolve_overlaps(index, std::move(boxes), options);
 }
 

@@ -209,7 +209,8 @@ SnapShrinkResult snap_and_shrink(const SolidIndex& index, std::vector<HeightBox>
 namespace subfab {
 
 SnapShrinkResult snap_and_shrink(const Mesh& mesh, std::vector<HeightBox> boxes, const SnapShrinkOptions& options) {
-  const detail::SolidIndex index(mesh, overhang_sine(options.max_overhang_deg), options.allowed_overhangs);
+  const detail::SolidIndex index(mesh, overhang_sine(options.max_overhang_deg), options.allowed_overhangs,
+                                 options.overhang_floors);
   return detail::snap_and_shrink(index, std::move(boxes), options);
 }
 

@@ -75,6 +75,46 @@ std::vector<std::uint8_t> tolerance_allowances(const Mesh& mesh, const Tolerance
   return allowed;
 }
 
+OverhangAllowances allowances_with_floors(const Mesh& mesh, const std::vector<std::array<double, 3>>& depths,
+                                          const std::vector<std::array<std::uint8_t, 3>>& level,
+                                          const std::vector<double>& fractions, double tolerance, double floor_scale) {
+  if (depths.size() != mesh.num_faces())
+    throw InvalidArgumentError("allowances_with_floors: one depth per face expected");
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  OverhangAllowances a;
+  a.bits = allowances_at(depths, level, fractions, tolerance);
+  a.floors.assign(mesh.num_faces(), {-inf, -inf, -inf});
+  if (!(floor_scale > 0)) return a;
+  const auto signs = detail::exact_normal_signs(mesh);
+  for (std::size_t f = 0; f < mesh.num_faces(); ++f) {
+    const Vec3 n = face_unit_normal(mesh, f);
+    for (std::size_t k = 0; k < 3; ++k) {
+      const auto bit = static_cast<std::uint8_t>(1u << k);
+      if ((a.bits[f] & bit) || level[f][k] >= fractions.size() || signs[f][k] == 0) continue;
+      const double cosine = std::abs(n[static_cast<int>(k)]);
+      if (!(cosine > 0)) continue;
+      // d = -s e_k: v.d = -s v_k.
+      const int s = signs[f][k];
+      double top = -inf;
+      for (int v : mesh.faces[f]) top = std::max(top, -s * mesh.vertices[static_cast<std::size_t>(v)][static_cast<int>(k)]);
+      a.floors[f][k] = top - floor_scale * fractions[level[f][k]] * tolerance / cosine;
+      a.bits[f] = static_cast<std::uint8_t>(a.bits[f] | bit);
+    }
+  }
+  return a;
+}
+
+std::size_t count_floored_faces(const OverhangAllowances& allowances) {
+  std::size_t n = 0;
+  for (std::size_t f = 0; f < allowances.bits.size(); ++f)
+    for (std::size_t k = 0; k < 3; ++k)
+      if ((allowances.bits[f] & (1u << k)) && std::isfinite(allowances.floors[f][k])) {
+        ++n;
+        break;
+      }
+  return n;
+}
+
 std::size_t count_allowed_faces(const std::vector<std::uint8_t>& allowed) {
   return static_cast<std::size_t>(std::count_if(allowed.begin(), allowed.end(), [](std::uint8_t a) { return a != 0; }));
 }

@@ -21,21 +21,24 @@ class Bvh {
  public:
   struct Node {
     Box3 bounds;
+    double key = 0.0;  // max over the items of their key (build()'s `keys`; 0 without)
     int first = 0;  // leaf: first item; inner: left child (right = left + 1)
     int count = 0;  // > 0: leaf with `count` items
   };
 
-  void build(std::vector<int> items, const std::vector<Box3>& boxes) {
+  //! `keys` (optional, indexed by item): each node keeps the max of its items' keys.
+  void build(std::vector<int> items, const std::vector<Box3>& boxes, const std::vector<double>* keys = nullptr) {
     items_ = std::move(items);
     nodes_.clear();
     if (items_.empty()) return;
     nodes_.reserve(2 * items_.size() / kLeafSize + 2);
     nodes_.emplace_back();
-    build_node(0, 0, static_cast<int>(items_.size()), boxes);
+    build_node(0, 0, static_cast<int>(items_.size()), boxes, keys);
   }
 
-  //! Visits the items of every leaf whose bounds pass `node_test`; stops
-  //! early when `visit(item)` returns false. Returns false if stopped.
+  //! Visits the items of every leaf whose node passes `node_test` (called
+  //! with the Node: bounds and key); stops early when `visit(item)` returns
+  //! false. Returns false if stopped.
   template <class NodeTest, class Visit>
   bool query(const NodeTest& node_test, const Visit& visit) const {
     if (nodes_.empty()) return true;
@@ -44,7 +47,7 @@ class Bvh {
     stack[top++] = 0;
     while (top > 0) {
       const Node& node = nodes_[static_cast<std::size_t>(stack[--top])];
-      if (!node_test(node.bounds)) continue;
+      if (!node_test(node)) continue;
       if (node.count > 0) {
         for (int n = 0; n < node.count; ++n)
           if (!visit(items_[static_cast<std::size_t>(node.first + n)])) return false;
@@ -59,12 +62,16 @@ class Bvh {
  private:
   static constexpr int kLeafSize = 4;
 
-  void build_node(int node_index, int begin, int end, const std::vector<Box3>& boxes) {
+  void build_node(int node_index, int begin, int end, const std::vector<Box3>& boxes,
+                  const std::vector<double>* keys) {
     Box3 bounds{Vec3::Constant(std::numeric_limits<double>::infinity()),
                 Vec3::Constant(-std::numeric_limits<double>::infinity())};
     Vec3 cmin = bounds.min, cmax = bounds.max;
+    double max_key = keys ? -std::numeric_limits<double>::infinity() : 0.0;
     for (int n = begin; n < end; ++n) {
-      const Box3& b = boxes[static_cast<std::size_t>(items_[static_cast<std::size_t>(n)])];
+      const auto item = static_cast<std::size_t>(items_[static_cast<std::size_t>(n)]);
+      if (keys) max_key = std::max(max_key, (*keys)[item]);
+      const Box3& b = boxes[item];
       bounds.min = bounds.min.cwiseMin(b.min);
       bounds.max = bounds.max.cwiseMax(b.max);
       const Vec3 centre = 0.5 * (b.min + b.max);
@@ -72,6 +79,7 @@ class Bvh {
       cmax = cmax.cwiseMax(centre);
     }
     nodes_[static_cast<std::size_t>(node_index)].bounds = bounds;
+    nodes_[static_cast<std::size_t>(node_index)].key = max_key;
     if (end - begin <= kLeafSize) {
       nodes_[static_cast<std::size_t>(node_index)].first = begin;
       nodes_[static_cast<std::size_t>(node_index)].count = end - begin;
@@ -95,8 +103,8 @@ class Bvh {
     nodes_.emplace_back();
     nodes_[static_cast<std::size_t>(node_index)].first = left;
     nodes_[static_cast<std::size_t>(node_index)].count = 0;
-    build_node(left, begin, mid, boxes);
-    build_node(left + 1, mid, end, boxes);
+    build_node(left, begin, mid, boxes, keys);
+    build_node(left + 1, mid, end, boxes, keys);
   }
 
   std::vector<Node> nodes_;
@@ -143,8 +151,11 @@ struct SolidIndex::Impl {
   std::vector<Box3> boxes;                      // per face
   std::vector<std::array<std::int8_t, 3>> normal_signs;  // per face: exact sign of n_x, n_y, n_z
   std::vector<std::array<std::int8_t, 3>> facing;        // per face: facing_signs() (= normal_signs when exact)
-  std::array<std::vector<int>, 6> away;         // per axis: faces with n.d < 0
-  std::array<Bvh, 6> away_bvh;                  // per axis, over `away`
+  std::array<std::vector<double>, 6> floor;     // per axis, per face: base floor (-inf: faces the axis; +inf: never)
+  std::array<std::vector<int>, 6> away;         // per axis: faces with facing_sign < 0 (floor > -inf)
+  std::array<Bvh, 6> hard_bvh;                  // per axis, over the faces of `away` with floor +inf
+  std::array<Bvh, 6> soft_bvh;                  // per axis, over those with a finite floor (node key: max floor)
+  std::array<bool, 6> any_soft{};               // per axis: soft_bvh is not empty
   Bvh all_bvh;                                  // all faces
 
   const Vec3& vertex(int face, int corner) const {
@@ -153,9 +164,18 @@ struct SolidIndex::Impl {
   int facing_sign(int face, Axis axis) const {
     return axis_sign(axis) * facing[static_cast<std::size_t>(face)][static_cast<std::size_t>(axis_dimension(axis))];
   }
+  double face_floor(int face, Axis axis) const {
+    return floor[static_cast<std::size_t>(axis_index(axis))][static_cast<std::size_t>(face)];
+  }
   bool meets(int face, const Box3& box) const {
     return triangle_meets_open_box(vertex(face, 0), vertex(face, 1), vertex(face, 2), box);
   }
+  //! Visits the faces facing away from `axis` that block `box` (meet its
+  //! open interior and have a base floor above its base); stops when
+  //! `visit` returns false (then returns false). `hard` / `soft`: which of
+  //! the two lists to search.
+  template <class Visit>
+  bool visit_blockers(const Box3& box, Axis axis, bool hard, bool soft, const Visit& visit) const;
 };
 
 namespace {
@@ -166,7 +186,31 @@ bool overlaps_open(const Box3& node, const Box3& box) {
 }
 }  // namespace
 
-SolidIndex::SolidIndex(const Mesh& mesh, double overhang_sine, const std::vector<std::uint8_t>* allowed)
+double box_base(const Box3& box, Axis axis) {
+  const int k = axis_dimension(axis);
+  return axis_sign(axis) > 0 ? box.min[k] : -box.max[k];
+}
+
+template <class Visit>
+bool SolidIndex::Impl::visit_blockers(const Box3& box, Axis axis, bool hard, bool soft, const Visit& visit) const {
+  const auto ai = static_cast<std::size_t>(axis_index(axis));
+  const double base = box_base(box, axis);
+  const auto test = [&](int f) {
+    return overlaps_open(boxes[static_cast<std::size_t>(f)], box) && floor[ai][static_cast<std::size_t>(f)] > base &&
+           meets(f, box);
+  };
+  if (hard && !hard_bvh[ai].query([&](const auto& node) { return overlaps_open(node.bounds, box); },
+                                  [&](int f) { return !test(f) || visit(f); }))
+    return false;
+  if (soft && any_soft[ai] &&
+      !soft_bvh[ai].query([&](const auto& node) { return node.key > base && overlaps_open(node.bounds, box); },
+                          [&](int f) { return !test(f) || visit(f); }))
+    return false;
+  return true;
+}
+
+SolidIndex::SolidIndex(const Mesh& mesh, double overhang_sine, const std::vector<std::uint8_t>* allowed,
+                       const std::vector<std::array<double, 3>>* floors)
     : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
   m.mesh = mesh;
@@ -175,6 +219,9 @@ SolidIndex::SolidIndex(const Mesh& mesh, double overhang_sine, const std::vector
     for (int v : t)
       if (v < 0 || static_cast<std::size_t>(v) >= mesh.vertices.size())
         throw InvalidMeshError("SolidIndex: face index out of range");
+  if (allowed && allowed->size() != nf) throw InvalidArgumentError("SolidIndex: one overhang allowance per face expected");
+  if (floors && (!allowed || floors->size() != nf))
+    throw InvalidArgumentError("SolidIndex: base floors need the allowances, one entry per face");
   m.boxes.resize(nf);
   m.normal_signs.resize(nf);
   for (std::size_t f = 0; f < nf; ++f) {
@@ -187,12 +234,37 @@ SolidIndex::SolidIndex(const Mesh& mesh, double overhang_sine, const std::vector
     for (int k = 0; k < 3; ++k)
       m.normal_signs[f][static_cast<std::size_t>(k)] = static_cast<std::int8_t>(normal_component_sign(a, b, c, k));
   }
-  m.facing = overhang_sine > 0.0 || allowed ? facing_signs(mesh, overhang_sine, allowed) : m.normal_signs;
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  // An allowance holds in every box where its floor is -inf (or no floors
+  // are given): such faces face the axis (facing_signs()). A finite floor
+  // makes it conditional on the box's base; +inf takes it away.
+  std::vector<std::uint8_t> everywhere;
+  if (allowed) {
+    everywhere = *allowed;
+    if (floors)
+      for (std::size_t f = 0; f < nf; ++f)
+        for (std::size_t k = 0; k < 3; ++k)
+          if ((*floors)[f][k] != -inf) everywhere[f] = static_cast<std::uint8_t>(everywhere[f] & ~(1u << k));
+  }
+  m.facing = overhang_sine > 0.0 || allowed ? facing_signs(mesh, overhang_sine, allowed ? &everywhere : nullptr)
+                                            : m.normal_signs;
   for (Axis axis : kAllAxes) {
-    auto& list = m.away[static_cast<std::size_t>(axis_index(axis))];
-    for (std::size_t f = 0; f < nf; ++f)
-      if (m.facing_sign(static_cast<int>(f), axis) < 0) list.push_back(static_cast<int>(f));
-    m.away_bvh[static_cast<std::size_t>(axis_index(axis))].build(list, m.boxes);
+    const auto ai = static_cast<std::size_t>(axis_index(axis));
+    const auto k = static_cast<std::size_t>(axis_dimension(axis));
+    auto& fl = m.floor[ai];
+    fl.assign(nf, -inf);
+    auto& list = m.away[ai];
+    std::vector<int> hard, soft;
+    for (std::size_t f = 0; f < nf; ++f) {
+      if (m.facing_sign(static_cast<int>(f), axis) >= 0) continue;
+      list.push_back(static_cast<int>(f));
+      const bool conditional = floors && ((*allowed)[f] & (1u << k)) && (*floors)[f][k] < inf;
+      fl[f] = conditional ? (*floors)[f][k] : inf;
+      (conditional ? soft : hard).push_back(static_cast<int>(f));
+    }
+    m.any_soft[ai] = !soft.empty();
+    m.hard_bvh[ai].build(std::move(hard), m.boxes);
+    m.soft_bvh[ai].build(std::move(soft), m.boxes, &fl);
   }
   std::vector<int> all(nf);
   std::iota(all.begin(), all.end(), 0);
@@ -216,26 +288,32 @@ const Box3& SolidIndex::face_box(int face) const { return impl_->boxes[static_ca
 
 bool SolidIndex::face_meets_open_box(int face, const Box3& box) const { return impl_->meets(face, box); }
 
+double SolidIndex::base_floor(int face, Axis axis) const { return impl_->face_floor(face, axis); }
+
+bool SolidIndex::has_conditional_faces(Axis axis) const {
+  return impl_->any_soft[static_cast<std::size_t>(axis_index(axis))];
+}
+
 bool SolidIndex::box_is_valid(const Box3& box, Axis axis) const {
   for (int k = 0; k < 3; ++k)
     if (!(box.max[k] > box.min[k])) return true;
-  const Impl& m = *impl_;
-  return m.away_bvh[static_cast<std::size_t>(axis_index(axis))].query(
-      [&](const Box3& node) { return overlaps_open(node, box); },
-      [&](int f) { return !(overlaps_open(m.boxes[static_cast<std::size_t>(f)], box) && m.meets(f, box)); });
+  return impl_->visit_blockers(box, axis, true, true, [](int) { return false; });
+}
+
+bool SolidIndex::conditional_faces_allow(const Box3& box, Axis axis) const {
+  for (int k = 0; k < 3; ++k)
+    if (!(box.max[k] > box.min[k])) return true;
+  return impl_->visit_blockers(box, axis, false, true, [](int) { return false; });
 }
 
 std::vector<int> SolidIndex::blocking_faces(const Box3& box, Axis axis, std::size_t max_count) const {
   std::vector<int> result;
   for (int k = 0; k < 3; ++k)
     if (!(box.max[k] > box.min[k])) return result;
-  const Impl& m = *impl_;
-  m.away_bvh[static_cast<std::size_t>(axis_index(axis))].query(
-      [&](const Box3& node) { return overlaps_open(node, box); },
-      [&](int f) {
-        if (overlaps_open(m.boxes[static_cast<std::size_t>(f)], box) && m.meets(f, box)) result.push_back(f);
-        return true;
-      });
+  impl_->visit_blockers(box, axis, true, true, [&](int f) {
+    result.push_back(f);
+    return true;
+  });
   std::sort(result.begin(), result.end());
   if (result.size() > max_count) result.resize(max_count);
   return result;
@@ -246,7 +324,7 @@ std::vector<int> SolidIndex::faces_meeting_open_box(const Box3& box) const {
   for (int k = 0; k < 3; ++k)
     if (!(box.max[k] > box.min[k])) return result;
   const Impl& m = *impl_;
-  m.all_bvh.query([&](const Box3& node) { return overlaps_open(node, box); },
+  m.all_bvh.query([&](const auto& node) { return overlaps_open(node.bounds, box); },
                   [&](int f) {
                     if (overlaps_open(m.boxes[static_cast<std::size_t>(f)], box) && m.meets(f, box))
                       result.push_back(f);
@@ -260,7 +338,7 @@ bool SolidIndex::any_face_meets_open_box(const Box3& box) const {
   for (int k = 0; k < 3; ++k)
     if (!(box.max[k] > box.min[k])) return false;
   const Impl& m = *impl_;
-  return !m.all_bvh.query([&](const Box3& node) { return overlaps_open(node, box); },
+  return !m.all_bvh.query([&](const auto& node) { return overlaps_open(node.bounds, box); },
                           [&](int f) { return !(overlaps_open(m.boxes[static_cast<std::size_t>(f)], box) && m.meets(f, box)); });
 }
 
@@ -270,7 +348,7 @@ std::vector<int> SolidIndex::faces_near_closed_box(const Box3& box) const {
   auto touches = [&](const Box3& b) {
     return (b.max.array() >= box.min.array()).all() && (b.min.array() <= box.max.array()).all();
   };
-  m.all_bvh.query(touches, [&](int f) {
+  m.all_bvh.query([&](const auto& node) { return touches(node.bounds); }, [&](int f) {
     if (touches(m.boxes[static_cast<std::size_t>(f)])) result.push_back(f);
     return true;
   });
@@ -297,15 +375,15 @@ bool SolidIndex::face_covered(int face, const Box3& box, Axis axis) const {
     }
   }
   if (in_some_plane) return true;
-  return m.facing_sign(face, axis) >= 0;
+  return m.face_floor(face, axis) <= box_base(box, axis);  // facing d, or allowed at this box's base
 }
 
 std::vector<int> SolidIndex::faces_covered(const Box3& box, Axis axis) const {
   std::vector<int> result;
   const Impl& m = *impl_;
   m.all_bvh.query(
-      [&](const Box3& node) {
-        return (node.max.array() >= box.min.array()).all() && (node.min.array() <= box.max.array()).all();
+      [&](const auto& node) {
+        return (node.bounds.max.array() >= box.min.array()).all() && (node.bounds.min.array() <= box.max.array()).all();
       },
       [&](int f) {
         if (face_covered(f, box, axis)) result.push_back(f);
@@ -330,34 +408,53 @@ double SolidIndex::push_face(const Box3& box, Axis axis, int dim, int side, doub
   };
 
   // Candidates: facing-away faces whose bounding box reaches the moving
-  // face's plane and overlaps the swept region's open interior laterally.
+  // face's plane and overlaps the swept region's open interior laterally
+  // (and, for a face allowed above a base floor, whose floor lies above the
+  // base somewhere on the way). A face blocks the box at t when it meets its
+  // open interior and its floor lies above the box's base: both grow
+  // monotonically with the motion, so the first blocking position is found
+  // by bisection as for a plain contact.
+  const auto ai = static_cast<std::size_t>(axis_index(axis));
+  const bool moves_base = dim == axis_dimension(axis) && side == -axis_sign(axis);
+  const double base_now = box_base(box, axis);
+  const double base_lowest = box_base(region, axis);
   struct Candidate {
-    double estimate;  // approximate first-contact position
+    double estimate;  // approximate first blocking position
     int face;
   };
   std::vector<Candidate> candidates;
   std::vector<Vec3> poly, scratch;
-  m.away_bvh[static_cast<std::size_t>(axis_index(axis))].query(
-      [&](const Box3& node) { return overlaps_open(node, region); },
-      [&](int f) {
-        const Box3& fb = m.boxes[static_cast<std::size_t>(f)];
-        if (!overlaps_open(fb, region)) return true;
-        if (side > 0 ? fb.max[dim] < current : fb.min[dim] > current) return true;
-        // Approximate contact: clip the triangle to the closed swept region.
-        poly = {m.vertex(f, 0), m.vertex(f, 1), m.vertex(f, 2)};
-        for (int k = 0; k < 3 && !poly.empty(); ++k) {
-          if (k == dim) continue;
-          clip_polygon(poly, k, box.min[k], +1, scratch);
-          if (!poly.empty()) clip_polygon(poly, k, box.max[k], -1, scratch);
-        }
-        if (!poly.empty()) clip_polygon(poly, dim, current, side, scratch);
-        double estimate = limit;
-        for (const Vec3& p : poly)
-          estimate = side > 0 ? std::min(estimate, p[dim]) : std::max(estimate, p[dim]);
-        if (side > 0 ? !(estimate >= current) : !(estimate <= current)) estimate = current;
-        candidates.push_back({estimate, f});
-        return true;
-      });
+  const auto collect = [&](int f) {
+    const Box3& fb = m.boxes[static_cast<std::size_t>(f)];
+    if (!overlaps_open(fb, region)) return true;
+    const double fl = m.floor[ai][static_cast<std::size_t>(f)];
+    if (!(fl > base_lowest)) return true;  // allowed all the way
+    const bool soft = moves_base && !(fl > base_now);  // blocks only once the base passes its floor
+    if (!soft && (side > 0 ? fb.max[dim] < current : fb.min[dim] > current)) return true;
+    // Approximate contact: clip the triangle to the closed swept region.
+    poly = {m.vertex(f, 0), m.vertex(f, 1), m.vertex(f, 2)};
+    for (int k = 0; k < 3 && !poly.empty(); ++k) {
+      if (k == dim) continue;
+      clip_polygon(poly, k, box.min[k], +1, scratch);
+      if (!poly.empty()) clip_polygon(poly, k, box.max[k], -1, scratch);
+    }
+    if (!poly.empty()) clip_polygon(poly, dim, current, side, scratch);
+    double estimate = limit;
+    for (const Vec3& p : poly) estimate = side > 0 ? std::min(estimate, p[dim]) : std::max(estimate, p[dim]);
+    if (soft) {
+      if (fb.max[dim] > box.min[dim] && fb.min[dim] < box.max[dim]) estimate = current;  // may meet the box already
+      const double crossing = -side * fl;  // where the base passes the floor
+      estimate = side > 0 ? std::max(estimate, crossing) : std::min(estimate, crossing);
+      estimate = side > 0 ? std::min(estimate, limit) : std::max(estimate, limit);
+    }
+    if (side > 0 ? !(estimate >= current) : !(estimate <= current)) estimate = current;
+    candidates.push_back({estimate, f});
+    return true;
+  };
+  m.hard_bvh[ai].query([&](const auto& node) { return overlaps_open(node.bounds, region); }, collect);
+  if (m.any_soft[ai])
+    m.soft_bvh[ai].query([&](const auto& node) { return node.key > base_lowest && overlaps_open(node.bounds, region); },
+                         collect);
   std::sort(candidates.begin(), candidates.end(), [&](const Candidate& x, const Candidate& y) {
     if (x.estimate != y.estimate) return side > 0 ? x.estimate < y.estimate : x.estimate > y.estimate;
     return x.face < y.face;
@@ -369,14 +466,19 @@ double SolidIndex::push_face(const Box3& box, Axis axis, int dim, int side, doub
   double best = limit;
   for (const Candidate& cand : candidates) {
     const Box3& fb = m.boxes[static_cast<std::size_t>(cand.face)];
+    const double fl = m.floor[ai][static_cast<std::size_t>(cand.face)];
+    const auto blocks = [&](double t) {
+      const Box3 b = box_at(t);
+      return fl > box_base(b, axis) && m.meets(cand.face, b);
+    };
     // The face can only meet the open box at `best` if it reaches below it.
     if (side > 0 ? !(fb.min[dim] < best) : !(fb.max[dim] > best)) continue;
-    if (!m.meets(cand.face, box_at(best))) continue;
+    if (!blocks(best)) continue;
     // Largest t in [current, best) with no contact: lo never meets (the box
     // at `current` is valid), hi meets; gallop from the estimate, then bisect.
     std::int64_t lo = key(current);
     std::int64_t hi = key(best);
-    auto meets_key = [&](std::int64_t k) { return m.meets(cand.face, box_at(value(k))); };
+    auto meets_key = [&](std::int64_t k) { return blocks(value(k)); };
     std::int64_t guess = std::clamp(key(cand.estimate), lo, hi);
     if (guess > lo && guess < hi) {
       if (meets_key(guess)) {
@@ -430,7 +532,8 @@ bool SolidIndex::is_inside(const Vec3& p) const {
     return sign_of_number(w.x() - u.x());
   };
   m.all_bvh.query(
-      [&](const Box3& node) {
+      [&](const auto& n) {
+        const Box3& node = n.bounds;
         return node.min.x() <= p.x() && p.x() <= node.max.x() && node.min.y() <= p.y() && p.y() <= node.max.y() &&
                node.max.z() >= p.z();
       },

@@ -18,13 +18,25 @@
 //!   d when the unit normal has n.d >= -s (facing_signs(), double unit
 //!   normal against s); everything else stays exact, is_inside and the
 //!   box-plane test of coverage included.
-//! - A box is VALID for axis d iff no face facing away from d meets the OPEN
-//!   interior of the box (touching its boundary is allowed). A box with a
-//!   zero extent has an empty interior and is always valid.
+//! - Base floors (decompose --tolerance, issue 17): an allowance may hold
+//!   only in boxes whose base lies high enough under the face. The BASE of a
+//!   box for axis d is min over the box of x.d (box.min[k] for +e_k,
+//!   -box.max[k] for -e_k); face f's FLOOR for d is -inf when f faces d
+//!   (exactly, within s, or allowed in every box), a finite value F when f
+//!   faces away from d but is allowed in boxes whose base is >= F (the fill
+//!   under it is then short, see tolerance_allowances.h), +inf otherwise.
+//!   facing_sign() is < 0 iff the floor is > -inf. Comparisons of the base
+//!   with a floor are plain double comparisons (deterministic).
+//! - A box is VALID for axis d iff no face facing away from d whose floor
+//!   lies above the box's base meets the OPEN interior of the box (touching
+//!   its boundary is allowed). A box with a zero extent has an empty
+//!   interior and is always valid. A box inside a valid box is valid (its
+//!   base is not lower).
 //! - A face is COVERED by a box for axis d iff its three vertices lie in the
 //!   closed box and, for every boundary plane of the box the face lies in,
 //!   its normal points out of the box through that plane (so the solid is on
-//!   the box's side); a face lying in no boundary plane must face d. Hence
+//!   the box's side); a face lying in no boundary plane must face d, or have
+//!   its floor at or below the box's base. Hence
 //!   the base face of a cube (n = -d) is covered by the cube's box for d, a
 //!   face lying in a side plane with the solid outside the box is not, and a
 //!   box with a zero extent covers nothing. For a valid box, covered faces
@@ -37,6 +49,7 @@
 //! have finite coordinates.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -49,6 +62,9 @@
 
 namespace subfab::detail {
 
+//! The base of `box` for `axis`: min over the box of x.d (see above).
+double box_base(const Box3& box, Axis axis);
+
 class SolidIndex {
  public:
   //! Builds the index (copies the mesh). O(F log F).
@@ -57,8 +73,13 @@ class SolidIndex {
   //! \param overhang_sine allowance s >= 0 of the facing test (0: exact)
   //! \param allowed optional per-face allowances of the facing test (see
   //!        facing_signs(); decompose --tolerance), copied
+  //! \param floors optional (needs `allowed`), per face and dimension k: the
+  //!        base floor of the allowance of bit k (for the direction along
+  //!        e_k the face faces away from; -inf: every box, +inf: none; see
+  //!        the file comment); nullptr: every allowance holds in every box
   explicit SolidIndex(const Mesh& mesh, double overhang_sine = 0.0,
-                      const std::vector<std::uint8_t>* allowed = nullptr);
+                      const std::vector<std::uint8_t>* allowed = nullptr,
+                      const std::vector<std::array<double, 3>>* floors = nullptr);
   ~SolidIndex();
   SolidIndex(const SolidIndex&) = delete;
   SolidIndex& operator=(const SolidIndex&) = delete;
@@ -69,8 +90,17 @@ class SolidIndex {
   int num_faces() const;
 
   //! Sign (-1, 0, +1) of n.d for face `face` and direction `axis` (exact;
-  //! with an overhang allowance s, -1 iff the unit n.d < -s, 0 iff within s).
+  //! with an overhang allowance s, -1 iff the unit n.d < -s, 0 iff within s;
+  //! 0 where an allowance holds in every box; -1 where it depends on the
+  //! box's base).
   int facing_sign(int face, Axis axis) const;
+  //! The face's base floor for `axis` (see the file comment).
+  double base_floor(int face, Axis axis) const;
+  //! Has some face a finite base floor for `axis`?
+  bool has_conditional_faces(Axis axis) const;
+  //! Exact: does no face with a finite floor above the box's base meet the
+  //! open box (box_is_valid() restricted to those faces)?
+  bool conditional_faces_allow(const Box3& box, Axis axis) const;
   //! Faces with facing_sign < 0, sorted by id.
   const std::vector<int>& faces_facing_away(Axis axis) const;
   //! Bounding box of a face (exact: min/max of its vertex coordinates).
@@ -111,7 +141,9 @@ class SolidIndex {
   //! `limit` (inclusive) such that the box with that face at t is still valid
   //! for `axis`. `dim` in 0..2; `side` +1 moves box.max[dim] up
   //! (limit >= box.max[dim]), -1 moves box.min[dim] down (limit <= box.min[dim]).
-  //! Exact (first contact with the facing-away triangles).
+  //! Exact (first contact with the facing-away triangles; with base floors,
+  //! moving the base also stops where it would pass the floor of a face
+  //! meeting the box).
   double push_face(const Box3& box, Axis axis, int dim, int side, double limit) const;
 
   //! Exact, deterministic inside test (parity of exact crossings of a ray

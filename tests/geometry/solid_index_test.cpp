@@ -5,6 +5,8 @@
 
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -276,6 +278,112 @@ TEST(SolidIndex, OverhangAllowanceRelaxesOnlyTheFacingTest) {
   EXPECT_LT(exact.faces_covered(whole, Axis::PosZ).size(), barrel.faces.size());
   for (const Vec3& p : {Vec3(0, 0, 1), Vec3(1.05, 0, 1), Vec3(1.05, 0, 0.1)})
     EXPECT_EQ(exact.is_inside(p), leaning.is_inside(p)) << p.transpose();
+}
+
+TEST(SolidIndex, BaseFloorsMakeAnAllowanceDependOnTheBoxsBase) {
+  // The T shape's bar (z in [2, 3]) overhangs the stem: its underside
+  // (z = 2, facing -z) blocks every +z box reaching below it. Allowed for z
+  // above the base floor 1.5, a +z box may hold it when its base lies at or
+  // above z = 1.5, not lower.
+  Mesh t = test::make_t_shape();
+  for (Vec3& v : t.vertices) std::swap(v.y(), v.z());
+  for (Triangle& f : t.faces) std::swap(f[1], f[2]);
+  std::vector<std::uint8_t> allowed(t.faces.size(), 0);
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  std::vector<std::array<double, 3>> floors(t.faces.size(), {-inf, -inf, -inf});
+  int underside = 0;
+  for (std::size_t f = 0; f < t.faces.size(); ++f) {
+    const Vec3 n = face_unit_normal(t, f);
+    if (n.z() < -0.5 && t.vertices[static_cast<std::size_t>(t.faces[f][0])].z() == 2.0) {
+      allowed[f] = 4;
+      floors[f][2] = 1.5;
+      ++underside;
+    }
+  }
+  ASSERT_EQ(underside, 4);
+  const SolidIndex everywhere(t, 0.0, &allowed);  // no floors: the bits hold in every box
+  const SolidIndex index(t, 0.0, &allowed, &floors);
+  const Box3 whole = mesh_box(t);
+  EXPECT_TRUE(everywhere.box_is_valid(whole, Axis::PosZ));
+  EXPECT_FALSE(index.box_is_valid(whole, Axis::PosZ));  // base 0 < 1.5
+  EXPECT_EQ(index.blocking_faces(whole, Axis::PosZ).size(), 4u);
+  EXPECT_TRUE(index.has_conditional_faces(Axis::PosZ));
+  EXPECT_FALSE(index.has_conditional_faces(Axis::NegZ));
+  EXPECT_FALSE(index.conditional_faces_allow(whole, Axis::PosZ));
+  const Box3 high{Vec3(0, 0, 1.5), Vec3(3, 1, 3)};
+  const Box3 low{Vec3(0, 0, std::nextafter(1.5, 0.0)), Vec3(3, 1, 3)};
+  EXPECT_TRUE(index.box_is_valid(high, Axis::PosZ));
+  EXPECT_FALSE(index.box_is_valid(low, Axis::PosZ));
+  EXPECT_TRUE(index.conditional_faces_allow(high, Axis::PosZ));
+  // Coverage follows the base: the underside is covered by the high box only.
+  int covered_high = 0, covered_low = 0;
+  for (std::size_t f = 0; f < t.faces.size(); ++f)
+    if (allowed[f]) {
+      EXPECT_EQ(index.facing_sign(static_cast<int>(f), Axis::PosZ), -1);
+      EXPECT_EQ(everywhere.facing_sign(static_cast<int>(f), Axis::PosZ), 0);
+      EXPECT_EQ(index.base_floor(static_cast<int>(f), Axis::PosZ), 1.5);
+      covered_high += index.face_covered(static_cast<int>(f), high, Axis::PosZ) ? 1 : 0;
+      covered_low += index.face_covered(static_cast<int>(f), low, Axis::PosZ) ? 1 : 0;
+    }
+  EXPECT_EQ(covered_high, 4);
+  EXPECT_EQ(covered_low, 0);
+  // Pushing the bar's box down stops exactly at the floor; sideways at a
+  // base above the floor nothing stops it; -z is unaffected.
+  const Box3 bar_top{Vec3(0, 0, 2.5), Vec3(3, 1, 3)};
+  EXPECT_EQ(index.push_face(bar_top, Axis::PosZ, 2, -1, -1.0), 1.5);
+  EXPECT_EQ(everywhere.push_face(bar_top, Axis::PosZ, 2, -1, -1.0), 0.0);  // the stem's bottom
+  const Box3 stem_high{Vec3(1, 0, 1.6), Vec3(2, 1, 3)};
+  EXPECT_EQ(index.push_face(stem_high, Axis::PosZ, 0, -1, -5.0), -5.0);
+  const Box3 stem{Vec3(1, 0, 0), Vec3(2, 1, 3)};
+  EXPECT_EQ(index.push_face(stem, Axis::PosZ, 0, -1, -5.0), 1.0);
+  EXPECT_TRUE(index.box_is_valid(whole, Axis::NegZ));
+}
+
+TEST(SolidIndex, PushFaceWithBaseFloorsMatchesBruteForceOnRealData) {
+  // Random floors on the faces facing away from each axis: push_face's
+  // result is valid and maximal (one double further is invalid).
+  const Mesh mesh = read_data("bunny_lowres.off");
+  const BoundingBox bb = bounding_box(mesh);
+  std::mt19937 rng(7);
+  std::vector<std::uint8_t> allowed(mesh.faces.size(), 0);
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  std::vector<std::array<double, 3>> floors(mesh.faces.size(), {-inf, -inf, -inf});
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const Vec3 n = face_unit_normal(mesh, f);
+    for (int k = 0; k < 3; ++k) {
+      if (rng() % 2) continue;
+      allowed[f] = static_cast<std::uint8_t>(allowed[f] | (1u << k));
+      // Base coordinate for the direction the face faces away from.
+      const double lo = n[k] < 0 ? bb.min[k] : -bb.max[k], hi = n[k] < 0 ? bb.max[k] : -bb.min[k];
+      floors[f][static_cast<std::size_t>(k)] = lo + (hi - lo) * static_cast<double>(rng() % 1000) / 1000.0;
+    }
+  }
+  const SolidIndex index(mesh, 0.0, &allowed, &floors);
+  int moved = 0, base_moves = 0;
+  for (int iter = 0; iter < 300; ++iter) {
+    const int f = static_cast<int>(rng() % mesh.faces.size());
+    const Axis axis = closest_axis(face_unit_normal(mesh, static_cast<std::size_t>(f)));
+    const Box3 seed = index.face_box(f);
+    if (!index.box_is_valid(seed, axis)) continue;
+    const int dim = iter % 2 ? axis_dimension(axis) : static_cast<int>(rng() % 3);
+    const int side = (rng() % 2) ? 1 : -1;
+    const double limit = side > 0 ? bb.max[dim] + 1 : bb.min[dim] - 1;
+    const double t = index.push_face(seed, axis, dim, side, limit);
+    Box3 at = seed;
+    (side > 0 ? at.max[dim] : at.min[dim]) = t;
+    EXPECT_TRUE(index.box_is_valid(at, axis)) << "iteration " << iter;
+    if (t != limit) {
+      Box3 beyond = seed;
+      (side > 0 ? beyond.max[dim] : beyond.min[dim]) = std::nextafter(t, limit);
+      EXPECT_FALSE(index.box_is_valid(beyond, axis)) << "not maximal at iteration " << iter;
+    }
+    if (t != (side > 0 ? seed.max[dim] : seed.min[dim])) {
+      ++moved;
+      base_moves += dim == axis_dimension(axis) && side == -axis_sign(axis) ? 1 : 0;
+    }
+  }
+  EXPECT_GT(moved, 50);
+  EXPECT_GT(base_moves, 10);
 }
 
 }  // namespace

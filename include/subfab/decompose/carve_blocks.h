@@ -27,6 +27,7 @@
 //!   round every kept piece to doubles, in box order.
 #pragma once
 
+#include <array>
 #include <cstdint>
 
 #include <cstddef>
@@ -63,6 +64,10 @@ struct CarveOptions {
   const std::vector<std::uint8_t>* allowed_overhangs = nullptr;  // per face of the mesh passed: bit k set = the
                                   // face counts as facing both +-e_k (decompose --tolerance: its undercut is within
                                   // the tolerance, tolerance_allowances()); nullptr = none
+  const std::vector<std::array<double, 3>>* overhang_floors = nullptr;  // with allowed_overhangs, per face and
+                                  // dimension k: the allowance of bit k holds only in boxes whose base (min of x.d
+                                  // over the box, d the direction along e_k the face faces away from) is >= this
+                                  // (-inf: every box; see solid_index.h and tolerance_allowances.h); nullptr = every box
   Progress* progress = nullptr;   // stage progress and warnings (nullptr: silent)
 };
 

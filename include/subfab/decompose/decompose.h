@@ -53,6 +53,12 @@ struct DecomposeOptions {
   double sliver_thickness = 1e-4;  // blocks thinner than max(this x bbox diagonal, the tolerance) where the model
                                    // is thicker are slivers (validate check 9): within a tolerance they are merged
                                    // or dropped where measured within it, at 0 only counted (remove_slivers.h)
+  double tolerance_floor_scale = 0.0;  // within a tolerance: a face whose undercut is deeper than q x T may still
+                                    // lean in boxes whose base lies at most this x q x T / |n.d| under its top (the
+                                    // fill there is that short; allowances_with_floors(); --tolerance-floors). 0 (the
+                                    // default): per face only. Off by default: on airplane at 1.8e-3, 0.5 gives 7
+                                    // blocks per round but 2 fail the measure and each round's measure takes ~400 s
+                                    // (bench/RESULTS.md)
   Progress* progress = nullptr; // stage progress (nullptr = silent)
 };
 
@@ -84,7 +90,9 @@ struct DecomposeResult {
                              // shape holding material under an undercut, within the tolerance)
   double deviation_bound = 0.0;  // largest deviation bound measured by the merges within the tolerance (model units)
   std::size_t num_tolerance_merges = 0;  // merges into milled shapes within the tolerance
-  std::size_t num_allowed_faces = 0;     // faces first allowed to lean past vertical (tolerance_allowances())
+  std::size_t num_allowed_faces = 0;     // faces first allowed to lean past vertical in every box (tolerance_allowances())
+  std::size_t num_floored_faces = 0;     // faces first allowed to lean only in boxes whose base lies close enough
+                                         // under them (allowances_with_floors())
   int num_tolerance_rounds = 0;          // decompositions under allowances that were milled and measured
   double sliver_thickness = 0.0;         // the sliver threshold used (model units; remove_slivers.h)
   std::size_t num_slivers = 0;           // slivers among the output blocks (kept: nothing removes them within T)

@@ -63,4 +63,36 @@ std::vector<std::uint8_t> allowances_at(const std::vector<std::array<double, 3>>
 //! Number of faces with at least one allowance.
 std::size_t count_allowed_faces(const std::vector<std::uint8_t>& allowed);
 
+//! Allowances decided per box (issue 17; bench/RESULTS.md, "Why the counts
+//! are high", lead 1): a floor on the base of the boxes a face may lean in.
+//! For face f facing away from d (d = -s e_k, s the exact sign of n_k), h_f
+//! = max over its vertices of v.d and c = |n.d| (unit normal), the material
+//! a block with base b (min of x.d over its box) leaves under f is at most
+//! min(L_free, h_f - b) x c deep (L_free: the free length under f,
+//! UndercutDepth). So at depth fraction q the face may lean in every box when
+//! its undercut depth <= q T (floor -inf, allowances_at()), else in the boxes
+//! whose base b >= h_f - q T / c (its floor). The stages take the floors
+//! with the bits (SolidIndex): a box's validity and coverage compare its
+//! actual base with them. Like the bits, a heuristic: the measure decides.
+struct OverhangAllowances {
+  std::vector<std::uint8_t> bits;             // per face: bit k set = allowed for the axis along e_k it faces
+                                              // away from, in some box (the relaxed facing test of the field)
+  std::vector<std::array<double, 3>> floors;  // per face and k: the base floor of bit k's allowance (d-coordinate,
+                                              // model units; -inf: every box; unused where bit k is clear)
+  bool operator==(const OverhangAllowances&) const = default;
+};
+
+//! allowances_at() with base floors (see OverhangAllowances): bit k of
+//! face f is set when depths[f][k] <= q T (floor -inf) or, with
+//! `with_floors`, whenever the face faces away from an axis along e_k
+//! (floor h_f - q T / c), q = fractions[level[f][k]]; nothing past the last
+//! level.
+OverhangAllowances allowances_with_floors(const Mesh& mesh, const std::vector<std::array<double, 3>>& depths,
+                                          const std::vector<std::array<std::uint8_t, 3>>& level,
+                                          const std::vector<double>& fractions, double tolerance, double floor_scale);
+
+//! Number of faces with an allowance whose floor is finite (allowed only in
+//! some boxes).
+std::size_t count_floored_faces(const OverhangAllowances& allowances);
+
 }  // namespace subfab
