@@ -27,6 +27,14 @@
 namespace subfab {
 namespace {
 
+//! The tile holding box b's lowest corner in a grid of square tiles of side
+//! `tile` over `all`, in the coordinates i, j (one tile when `tile` is 0).
+std::pair<long, long> tile_of(const BoundingBox& b, const BoundingBox& all, int i, int j, double tile) {
+  if (!(tile > 0)) return {0, 0};
+  return {static_cast<long>(std::floor((b.min[i] - all.min[i]) / tile)),
+          static_cast<long>(std::floor((b.min[j] - all.min[j]) / tile))};
+}
+
 namespace PMP = CGAL::Polygon_mesh_processing;
 using detail::ExactMesh;
 
@@ -269,9 +277,7 @@ std::optional<std::vector<BoundingBox>> fill_columns(const Mesh& carved, const M
   const double tile = std::max(all.size()[i], all.size()[j]) / 8.0;
   std::map<std::pair<long, long>, BoundingBox> tiles;
   for (const BoundingBox& b : boxes) {
-    const auto key = tile > 0 ? std::pair<long, long>{static_cast<long>(std::floor((b.min[i] - all.min[i]) / tile)),
-                                                        static_cast<long>(std::floor((b.min[j] - all.min[j]) / tile))}
-                                : std::pair<long, long>{0, 0};
+    const auto key = tile_of(b, all, i, j, tile);
     BoundingBox& t = tiles[key];
     t.extend(b.min);
     t.extend(b.max);
@@ -310,9 +316,7 @@ std::vector<BoundingBox> solid_columns(const Mesh& part, double merge_distance) 
       BoundingBox b;
       for (int v : f) b.extend(part.vertices[static_cast<std::size_t>(v)]);
       b.min[k] = low[static_cast<std::size_t>(find(f[0]))][k];
-      const auto key = tile > 0 ? std::pair<long, long>{static_cast<long>(std::floor((b.min[i] - all.min[i]) / tile)),
-                                                          static_cast<long>(std::floor((b.min[j] - all.min[j]) / tile))}
-                                  : std::pair<long, long>{0, 0};
+      const auto key = tile_of(b, all, i, j, tile);
       BoundingBox& t = tiles[key];
       t.extend(b.min);
       t.extend(b.max);
