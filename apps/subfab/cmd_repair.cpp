@@ -30,17 +30,9 @@ int run_repair(const RepairArgs& args) {
   ConsoleProgress progress(std::cerr, args.common.quiet, stderr_is_terminal());
   MeshRepairOptions options = args.options;
   options.progress = &progress;
-  Mesh mesh;
-  {
-    StageScope stage(&progress, "read");
-    mesh = read_mesh(args.mesh);  // IoError / InvalidMeshError: exit 2
-  }
-  const MeshRepairResult result = repair_mesh(mesh, options);  // InvalidMeshError: exit 2
-  {
-    StageScope stage(&progress, "write");
-    write_mesh(result.mesh, args.output);
-  }
-  if (!args.common.quiet) progress.print_timings(std::cerr);
+  const MeshRepairResult result = transform_mesh_file(
+      args.mesh, args.output, progress, args.common.quiet,
+      [&options](const Mesh& mesh) { return repair_mesh(mesh, options); });  // InvalidMeshError: exit 2
   const MeshRepairReport& r = result.report;
   if (args.common.json) {
     nlohmann::ordered_json j;

@@ -37,17 +37,9 @@ int run_smooth(const SmoothArgs& args) {
   SmoothOptions options = args.options;
   options.weights = args.weights == "cotangent" ? TaubinWeights::Cotangent : TaubinWeights::Uniform;
   options.progress = &progress;
-  Mesh mesh;
-  {
-    StageScope stage(&progress, "read");
-    mesh = read_mesh(args.mesh);  // IoError / InvalidMeshError: exit 2
-  }
-  const SmoothResult result = smooth_for_decomposition(mesh, options);  // InvalidMeshError: exit 2
-  {
-    StageScope stage(&progress, "write");
-    write_mesh(result.mesh, args.output);
-  }
-  if (!args.common.quiet) progress.print_timings(std::cerr);
+  const SmoothResult result = transform_mesh_file(
+      args.mesh, args.output, progress, args.common.quiet,
+      [&options](const Mesh& mesh) { return smooth_for_decomposition(mesh, options); });  // InvalidMeshError: exit 2
   const SmoothReport& r = result.report;
   if (args.common.json) {
     nlohmann::ordered_json j;

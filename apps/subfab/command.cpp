@@ -34,9 +34,18 @@ void add_output_folder(CLI::App& sub, std::string& outdir) {
 
 bool stderr_is_terminal() { return isatty(STDERR_FILENO) == 1; }
 
-Mesh read_closed_solid(const std::string& path, Progress& progress, const std::string& hint) {
+Mesh read_mesh_stage(const std::string& path, Progress& progress) {
   StageScope stage(&progress, "read");
-  Mesh mesh = read_mesh(path);  // IoError / InvalidMeshError: exit 2
+  return read_mesh(path);  // IoError / InvalidMeshError: exit 2
+}
+
+void write_mesh_stage(const Mesh& mesh, const std::string& path, Progress& progress) {
+  StageScope stage(&progress, "write");
+  write_mesh(mesh, path);
+}
+
+Mesh read_closed_solid(const std::string& path, Progress& progress, const std::string& hint) {
+  Mesh mesh = read_mesh_stage(path, progress);
   try {
     require_closed_solid(mesh, &progress);  // InvalidMeshError: exit 2, with the reason
   } catch (const InvalidMeshError& e) {
@@ -70,11 +79,7 @@ SolidInput read_solid_input(const std::string& path, const RepairInputOptions& o
     std::filesystem::remove(repaired_path, ec);  // stale, from an earlier --repair run
     return input;
   }
-  Mesh raw;
-  {
-    StageScope stage(&progress, "read");
-    raw = read_mesh(path);  // IoError / InvalidMeshError: exit 2
-  }
+  const Mesh raw = read_mesh_stage(path, progress);
   MeshRepairOptions repair_options;
   repair_options.max_deviation = options.max_deviation;
   repair_options.progress = &progress;

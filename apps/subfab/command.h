@@ -15,6 +15,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <functional>
+#include <iostream>
 #include <memory>
 #include <optional>
 #include <string>
@@ -90,6 +91,28 @@ CommandSpec make_command(const std::string& name, int order, const std::string& 
               return run(*args);
             }};
           }};
+}
+
+//! Reads the mesh at `path` in a "read" stage.
+//! \throw IoError / InvalidMeshError (exit 2), with the reason.
+Mesh read_mesh_stage(const std::string& path, Progress& progress);
+
+//! Writes `mesh` to `path` in a "write" stage.
+//! \throw IoError (exit 2).
+void write_mesh_stage(const Mesh& mesh, const std::string& path, Progress& progress);
+
+//! The frame of a mesh-to-mesh command (repair, smooth): reads `input`,
+//! makes the result with `make(mesh)` (whose `.mesh` member is the output
+//! mesh), writes it to `output`, then prints the stage timings unless
+//! `quiet`. Returns what `make` returned.
+template <class Make>
+auto transform_mesh_file(const std::string& input, const std::string& output, ConsoleProgress& progress, bool quiet,
+                         Make&& make) {
+  const Mesh mesh = read_mesh_stage(input, progress);
+  auto result = make(mesh);
+  write_mesh_stage(result.mesh, output, progress);
+  if (!quiet) progress.print_timings(std::cerr);
+  return result;
 }
 
 //! Reads the mesh at `path` in a "read" stage and passes it through
