@@ -44,8 +44,7 @@ std::optional<Mesh> exact_block_union(const Mesh& a, const Mesh& b,
   if (count_degenerate_faces(a) > 0 || count_degenerate_faces(b) > 0) return std::nullopt;
   warm_up_exact_booleans();
   std::optional<Mesh> out;
-  DeterministicArena arena;
-  try {
+  const std::string error = run_in_arena([&] {
     ExactMesh ea = to_exact(a), eb = to_exact(b), u;
     const auto np = CGAL::parameters::throw_on_self_intersection(true);
     if (PMP::corefine_and_compute_union(ea, eb, u, np, np) && u.number_of_faces() > 0) {
@@ -55,9 +54,8 @@ std::optional<Mesh> exact_block_union(const Mesh& a, const Mesh& b,
         out = to_double(u, &rounding);
       }
     }
-  } catch (const std::exception&) {
-    // An exact boolean that fails means: do not merge this pair.
-  }
+  });
+  if (!error.empty()) out.reset();  // an exact boolean that fails means: do not merge this pair
   return out;
 }
 

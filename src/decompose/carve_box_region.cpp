@@ -341,17 +341,8 @@ void carve_in_arena(const Mesh& solid, const detail::SolidIndex& index, const st
 BoxPieces carve_box_region(const Mesh& solid, const SolidIndex& index, const std::vector<HeightBox>& boxes,
                            std::size_t i) {
   BoxPieces out;
-  std::string error;
   detail::warm_up_exact_booleans();
-  {
-    detail::DeterministicArena arena;
-    try {
-      carve_in_arena(solid, index, boxes, i, out);
-    } catch (const std::exception& e) {
-      detail::SuspendArena heap;
-      error = e.what();
-    }
-  }
+  const std::string error = detail::run_in_arena([&] { carve_in_arena(solid, index, boxes, i, out); });
   if (!error.empty()) throw AlgorithmError("carving box " + std::to_string(i) + ": " + error);
   return out;
 }

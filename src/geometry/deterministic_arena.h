@@ -20,6 +20,8 @@
 #pragma once
 
 #include <cstddef>
+#include <exception>
+#include <string>
 
 namespace subfab::detail {
 
@@ -52,5 +54,26 @@ class SuspendArena {
  private:
   bool was_active_;
 };
+
+//! Runs `work()` in a fresh DeterministicArena and catches every
+//! std::exception inside it, so that no arena string leaves the arena:
+//! returns the exception's message copied to the heap ("unknown error" when
+//! it has none), or an empty string when `work` returned normally.
+//! Whatever `work` hands back must be built under a SuspendArena.
+template <class Work>
+std::string run_in_arena(Work&& work) {
+  std::string error;
+  {
+    DeterministicArena arena;
+    try {
+      work();
+    } catch (const std::exception& e) {
+      SuspendArena heap;
+      error = e.what();
+      if (error.empty()) error = "unknown error";
+    }
+  }
+  return error;
+}
 
 }  // namespace subfab::detail

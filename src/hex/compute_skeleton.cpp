@@ -91,46 +91,38 @@ Skeleton compute_skeleton(const Mesh& mesh, const ComputeSkeletonOptions& option
     bool empty = false;
     warm_up_flow();
     // An exception must not carry arena memory out (its message would be
-    // read after the arena is unmapped): it is caught inside, its message
-    // copied to the heap.
-    std::string error;
-    {
-      detail::DeterministicArena arena;
-      try {
-        SurfaceMesh sm = to_surface_mesh(mesh);
-        McfSkeleton mcf;
-        Skeletonization skeletonize(sm);
-        skeletonize(mcf);
-        const std::size_t n = boost::num_vertices(mcf);
-        empty = n == 0;
-        Tree tree(faces(sm).first, faces(sm).second, sm);
-        tree.accelerate_distance_queries();
-        std::vector<McfSkeleton::vertex_descriptor> order;
-        for (auto v : CGAL::make_range(boost::vertices(mcf))) order.push_back(v);
-        std::vector<std::pair<std::size_t, std::size_t>> edges;
-        for (auto e : CGAL::make_range(boost::edges(mcf)))
-          edges.emplace_back(static_cast<std::size_t>(boost::source(e, mcf)), static_cast<std::size_t>(boost::target(e, mcf)));
-        std::vector<double> radii(n, 0.0);
-        for (std::size_t i = 0; i < order.size(); ++i) {
-          const auto& node = mcf[order[i]];
-          double sum = 0;
-          for (auto sv : node.vertices) sum += std::sqrt(CGAL::squared_distance(node.point, sm.point(sv)));
-          double radius = node.vertices.empty() ? 0.0 : sum / static_cast<double>(node.vertices.size());
-          if (!(radius > 0)) radius = std::sqrt(tree.squared_distance(node.point));
-          radii[i] = radius;
-        }
-        detail::SuspendArena heap;  // the skeleton outlives the arena
-        const double tiny = 1e-9 * bounding_box(mesh).diagonal();
-        for (std::size_t i = 0; i < order.size(); ++i) {
-          const auto& point = mcf[order[i]].point;
-          raw.add_node(Vec3(point.x(), point.y(), point.z()), radii[i] > 0 ? radii[i] : tiny);
-        }
-        for (const auto& [a, b] : edges) raw.add_edge(static_cast<int>(a), static_cast<int>(b));
-      } catch (const std::exception& e) {
-        detail::SuspendArena heap;
-        error = e.what();
+    // read after the arena is unmapped): run_in_arena() copies it to the heap.
+    const std::string error = detail::run_in_arena([&] {
+      SurfaceMesh sm = to_surface_mesh(mesh);
+      McfSkeleton mcf;
+      Skeletonization skeletonize(sm);
+      skeletonize(mcf);
+      const std::size_t n = boost::num_vertices(mcf);
+      empty = n == 0;
+      Tree tree(faces(sm).first, faces(sm).second, sm);
+      tree.accelerate_distance_queries();
+      std::vector<McfSkeleton::vertex_descriptor> order;
+      for (auto v : CGAL::make_range(boost::vertices(mcf))) order.push_back(v);
+      std::vector<std::pair<std::size_t, std::size_t>> edges;
+      for (auto e : CGAL::make_range(boost::edges(mcf)))
+        edges.emplace_back(static_cast<std::size_t>(boost::source(e, mcf)), static_cast<std::size_t>(boost::target(e, mcf)));
+      std::vector<double> radii(n, 0.0);
+      for (std::size_t i = 0; i < order.size(); ++i) {
+        const auto& node = mcf[order[i]];
+        double sum = 0;
+        for (auto sv : node.vertices) sum += std::sqrt(CGAL::squared_distance(node.point, sm.point(sv)));
+        double radius = node.vertices.empty() ? 0.0 : sum / static_cast<double>(node.vertices.size());
+        if (!(radius > 0)) radius = std::sqrt(tree.squared_distance(node.point));
+        radii[i] = radius;
       }
-    }
+      detail::SuspendArena heap;  // the skeleton outlives the arena
+      const double tiny = 1e-9 * bounding_box(mesh).diagonal();
+      for (std::size_t i = 0; i < order.size(); ++i) {
+        const auto& point = mcf[order[i]].point;
+        raw.add_node(Vec3(point.x(), point.y(), point.z()), radii[i] > 0 ? radii[i] : tiny);
+      }
+      for (const auto& [a, b] : edges) raw.add_edge(static_cast<int>(a), static_cast<int>(b));
+    });
     if (!error.empty())
       throw AlgorithmError("the mean-curvature-flow skeleton failed (" + error + "); pass a skeleton with --skeleton");
     if (empty) throw AlgorithmError("the mean-curvature-flow skeleton is empty; pass a skeleton with --skeleton");

@@ -97,19 +97,11 @@ std::optional<Surface> local_surface(const Mesh& solid, const detail::SolidIndex
                                      std::string& error) {
   detail::warm_up_exact_booleans();
   std::optional<Surface> out;
-  detail::DeterministicArena arena;
-  try {
-    local_surface_in_arena(solid, index, block, others, region, inner, out);
-    return out;  // moved (a local): no allocation in the arena
-  } catch (const PMP::Corefinement::Self_intersection_exception&) {
-    detail::SuspendArena heap;
-    error = "an operand of the exact union self-intersects near the cut";
-  } catch (const std::exception& e) {
-    detail::SuspendArena heap;
-    error = std::string("exact boolean failed: ") + e.what();
-  }
-  detail::SuspendArena heap;
-  out.reset();
+  const std::string failure =
+      detail::run_in_arena([&] { local_surface_in_arena(solid, index, block, others, region, inner, out); });
+  if (failure.empty()) return out;
+  // CGAL's Self_intersection_exception: an operand self-intersects near the cut
+  error = "exact boolean failed: " + failure;
   return std::nullopt;
 }
 

@@ -259,18 +259,9 @@ detail::OutsidePart detail::outside_part(const Mesh& block, const Mesh& solid) {
   require_boolean_input(solid, "the input");
   detail::warm_up_exact_booleans();
   std::optional<OutsidePart> out;
-  {
-    detail::DeterministicArena arena;
-    try {
-      outside_in_arena(block, solid, out);
-    } catch (const std::exception&) {
-      // CGAL refused an operand (a self-intersection near the cut): the
-      // fallback below reports it, outside the arena.
-      detail::SuspendArena heap;
-      out.reset();
-    }
-  }
-  if (out) return std::move(*out);
+  // CGAL may refuse an operand (a self-intersection near the cut): the
+  // fallback below reports it, outside the arena.
+  if (detail::run_in_arena([&] { outside_in_arena(block, solid, out); }).empty() && out) return std::move(*out);
   return {volume_outside(block, solid), std::nullopt};
 }
 
