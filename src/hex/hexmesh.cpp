@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 
 #include "geometry/hausdorff_distance.h"
 #include "hex/hex_optimizers.h"
@@ -14,7 +16,6 @@
 #include "subfab/hex/pillow_hex_mesh.h"
 #include "subfab/hex/raise_min_scaled_jacobian.h"
 #include "subfab/hex/scaled_jacobian.h"
-#include "subfab/hex/subdivide_hex_mesh.h"
 
 namespace subfab {
 namespace {
@@ -200,11 +201,11 @@ HexMeshResult hexmesh(const Mesh& surface, const Skeleton* skeleton, const HexMe
   }
   timer.lap("resample");
   const detail::SurfaceProjector projector(surface);
+  Skeleton sized = r.resampled;  // the skeleton the structure is built on
   {
     StageScope stage(progress, "tubular structure");
     // the core is sized from the maximal spheres: never larger than the
     // distance from the node to the surface
-    Skeleton sized = r.resampled;
     centre_skeleton_nodes(sized, projector);
     for (std::size_t v = 0; v < sized.num_nodes(); ++v) {
       const double d = (projector.closest_point(sized.points[v]) - sized.points[v]).norm();
@@ -220,14 +221,39 @@ HexMeshResult hexmesh(const Mesh& surface, const Skeleton* skeleton, const HexMe
     StageScope stage(progress, "pillow");
     const std::vector<int> outer = pillow_hex_mesh(mesh);
     place_pillow(mesh, r.structure_info.vertex_anchor, outer, projector);
-    int levels = options.subdivisions;
-    if (levels < 0) {
-      levels = 1;
-      while (mesh.hexes.size() * (std::size_t{1} << (3 * (levels + 1))) <= options.max_hexes) ++levels;
-    }
-    r.subdivisions = levels;
   }
   timer.lap("pillow");
+  // resolution control (D.5): splits per hexahedron; without it (or without
+  // cones) every hexahedron splits equally
+  if (options.resolution_control) {
+    StageScope stage(progress, "resolution control");
+    r.cones_found = detect_cones(r.structure_info, sized, options.resolution);
+    r.resolution = control_resolution(mesh, r.cones_found, options.resolution);
+  } else {
+    r.resolution.splits.assign(mesh.hexes.size(), 0);
+    r.resolution.layer_of.assign(mesh.hexes.size(), -1);
+  }
+  int offset = options.subdivisions;
+  if (offset < 0) {
+    offset = 1;
+    while (planned_num_hexes(r.resolution, offset + 1) <= options.max_hexes) ++offset;
+  }
+  r.min_subdivisions = offset;
+  RefinementSchedule schedule = schedule_refinement(r.resolution, offset, r.subdivisions);
+  if (std::getenv("SUBFAB_DEBUG_D5"))
+    for (const ConeLayer& L : r.resolution.layers) {
+      auto P = [&](int v) { return mesh.vertices[idx(v)]; };
+      Vec3 ct = Vec3::Zero(), cb = Vec3::Zero();
+      for (int i = 0; i < 4; ++i) ct += P(L.tip[i]) / 4, cb += P(L.base[i]) / 4;
+      std::fprintf(stderr, "D5 layer: height %.3f tip edges %.3f %.3f base edges %.3f %.3f ring tip %.3f %.3f %.3f %.3f base %.3f %.3f %.3f %.3f\n",
+                   (cb - ct).norm(), (P(L.tip[1]) - P(L.tip[0])).norm(), (P(L.tip[2]) - P(L.tip[1])).norm(),
+                   (P(L.base[1]) - P(L.base[0])).norm(), (P(L.base[2]) - P(L.base[1])).norm(),
+                   (P(L.outer_tip[0]) - P(L.tip[0])).norm(), (P(L.outer_tip[1]) - P(L.tip[1])).norm(),
+                   (P(L.outer_tip[2]) - P(L.tip[2])).norm(), (P(L.outer_tip[3]) - P(L.tip[3])).norm(),
+                   (P(L.outer_base[0]) - P(L.base[0])).norm(), (P(L.outer_base[1]) - P(L.base[1])).norm(),
+                   (P(L.outer_base[2]) - P(L.base[2])).norm(), (P(L.outer_base[3]) - P(L.base[3])).norm());
+    }
+  timer.lap("resolution control");
   // coarse to fine: optimise, split, put the new boundary vertices on the
   // surface, optimise again (an untangled mesh splits into an almost
   // untangled one, so each level only has small repairs to make)
@@ -241,7 +267,7 @@ HexMeshResult hexmesh(const Mesh& surface, const Skeleton* skeleton, const HexMe
     std::vector<Vec3> targets;
     {
       StageScope stage(progress, "subdivide");
-      mesh = subdivide_hex_mesh(mesh);
+      mesh = refine_hex_mesh(mesh, schedule, i + 1);
       targets = radial_targets(mesh, projector);
     }
     oo.targets = &targets;
@@ -261,6 +287,14 @@ HexMeshResult hexmesh(const Mesh& surface, const Skeleton* skeleton, const HexMe
     r.mesh = std::move(mesh);
     r.check = check_hex_mesh(r.mesh);
     r.scaled_jacobian = scaled_jacobians(r.mesh);
+    r.in_cone_template = std::move(schedule.template_of);
+    if (std::getenv("SUBFAB_DEBUG_D5")) {
+      std::vector<std::size_t> order(r.scaled_jacobian.size());
+      for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+      std::sort(order.begin(), order.end(), [&](auto a, auto b) { return r.scaled_jacobian[a] < r.scaled_jacobian[b]; });
+      for (std::size_t i = 0; i < std::min<std::size_t>(15, order.size()); ++i)
+        std::fprintf(stderr, "D5 %zu sj %.3f template %d\n", order[i], r.scaled_jacobian[order[i]], r.in_cone_template[order[i]]);
+    }
     const auto& sj = r.scaled_jacobian;
     if (!sj.empty()) {
       r.min_sj = *std::min_element(sj.begin(), sj.end());
