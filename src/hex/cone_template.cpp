@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "hex/cone_template.h"
 
+#include <algorithm>
 #include <map>
 #include <tuple>
 
@@ -29,6 +30,7 @@ class TemplateBuilder {
       for (int c = 0; c < 8; ++c) corners_[k][c] = corner_id(k, c & 1, (c >> 1) & 1, c >> 2);
       parity_[k] = frame_parity(k);
     }
+    set_heights();
   }
 
   // a box column of coarse hexahedron k, [a0, a1] x [b0, b1] x [z0, z1]
@@ -55,6 +57,25 @@ class TemplateBuilder {
       int s, z;
     };
     const P2 bl{s0, z0}, br{s1, z0}, mr{s1, zm}, tr{s1, z1}, mt{sm, z1}, tl{s0, z1}, c{sm, zm};
+    // the inner point: in the middle, or, when the box is flatter than
+    // wide, nearer the unsplit side, on the diagonal from its bottom corner
+    // at 45 degrees (its two quads there would be slivers otherwise)
+    {
+      const double em = 0.5 * (e0 + e1) / kA;
+      auto at = [&](double s, double z) {
+        return along_a ? local_position(k, s / kA, em, z) : local_position(k, em, s / kA, z);
+      };
+      const double zgm = height(zm);
+      const double w = (at(s1, zgm) - at(s0, zgm)).norm();
+      const double h = (at(0.5 * (s0 + s1), height(z1)) - at(0.5 * (s0 + s1), height(z0))).norm();
+      const double f = w > 0 ? std::clamp(0.5 * h / w, 0.3, 0.5) : 0.5;
+      const double sc = (s0 + f * (s1 - s0)) / kA;
+      for (int e : {e0, e1}) {
+        const Point p = along_a ? Point{k, c.s, e, c.z} : Point{k, e, c.s, c.z};
+        override_.emplace(key(p), along_a ? std::array<double, 3>{sc, e / double(kA), zgm}
+                                          : std::array<double, 3>{e / double(kA), sc, zgm});
+      }
+    }
     const std::array<std::array<P2, 4>, 3> quads{{{bl, br, mr, c}, {c, mr, tr, mt}, {c, mt, tl, bl}}};
     for (const auto& q : quads) {
       std::array<Point, 8> h;
@@ -76,6 +97,33 @@ class TemplateBuilder {
   int corners_[5][8];  // [k][ia + 2 ib + 4 iz]
   int parity_[5];
   std::map<std::tuple<int, int, int>, int> made_;  // layer parameter point -> vertex
+  std::map<std::tuple<int, int, int>, std::array<double, 3>> override_;  // local position of the inner points
+  double z_at_[kZ + 1];  // geometric height (0 to 1) of each height step
+
+  //! Heights of the three sub-layers in proportion to what each doubles
+  //! (the core's width twice, the padding's thickness), so that their 2D
+  //! transitions are about as high as wide.
+  void set_heights() {
+    auto P = [&](int v) { return in_.vertices[idx(v)]; };
+    double w = 0, t = 0;
+    for (int i = 0; i < 4; ++i) {
+      const int j = (i + 1) % 4;
+      w += (P(layer_.tip[idx(j)]) - P(layer_.tip[idx(i)])).norm() + (P(layer_.base[idx(j)]) - P(layer_.base[idx(i)])).norm();
+      t += (P(layer_.outer_tip[idx(i)]) - P(layer_.tip[idx(i)])).norm() +
+           (P(layer_.outer_base[idx(i)]) - P(layer_.base[idx(i)])).norm();
+    }
+    double h[3] = {w, w, t};
+    const double sum = h[0] + h[1] + h[2];
+    for (double& x : h) x = sum > 0 ? std::clamp(x / sum, 0.2, 0.6) : 1.0 / 3;
+    const double norm = h[0] + h[1] + h[2];
+    const double b1 = h[0] / norm, b2 = (h[0] + h[1]) / norm;
+    const double levels[4] = {0, b1, b2, 1};
+    for (int z = 0; z <= kZ; ++z) {
+      const int s = std::min(z / 4, 2);
+      z_at_[z] = levels[s] + (levels[s + 1] - levels[s]) * (z - 4 * s) / 4.0;
+    }
+  }
+  double height(int z) const { return z_at_[z]; }
 
   int corner_id(int k, int ia, int ib, int iz) const {
     const auto& L = layer_;
@@ -121,12 +169,16 @@ class TemplateBuilder {
   }
 
   Vec3 position(const Point& p) const {
-    const double u = static_cast<double>(p.a) / kA, v = static_cast<double>(p.b) / kA,
-                 w = static_cast<double>(p.z) / kZ;
+    const auto it = override_.find(key(p));
+    if (it != override_.end()) return local_position(p.k, it->second[0], it->second[1], it->second[2]);
+    return local_position(p.k, static_cast<double>(p.a) / kA, static_cast<double>(p.b) / kA, height(p.z));
+  }
+  //! Trilinear position in coarse hexahedron k at local (u, v, w) in [0, 1]^3.
+  Vec3 local_position(int k, double u, double v, double w) const {
     Vec3 x = Vec3::Zero();
     for (int c = 0; c < 8; ++c) {
       const double f = ((c & 1) ? u : 1 - u) * (((c >> 1) & 1) ? v : 1 - v) * ((c >> 2) ? w : 1 - w);
-      x += f * in_.vertices[idx(corners_[p.k][c])];
+      x += f * in_.vertices[idx(corners_[k][c])];
     }
     return x;
   }

@@ -228,7 +228,20 @@ HexMeshResult hexmesh(const Mesh& surface, const Skeleton* skeleton, const HexMe
   if (options.resolution_control) {
     StageScope stage(progress, "resolution control");
     r.cones_found = detect_cones(r.structure_info, sized, options.resolution);
-    r.resolution = control_resolution(mesh, r.cones_found, options.resolution);
+    std::vector<Cone> used = r.cones_found;
+    r.resolution = control_resolution(mesh, used, options.resolution);
+    // the automatic choice keeps the bound: while one split of the least
+    // split hexahedra would already exceed it, the cone with the smallest
+    // ratio is dropped (each cone doubles the resolution of a whole part)
+    double seconds = r.resolution.ilp_seconds;
+    while (options.subdivisions < 0 && !used.empty() && planned_num_hexes(r.resolution, 1) > options.max_hexes) {
+      used.erase(std::min_element(used.begin(), used.end(),
+                                  [](const Cone& a, const Cone& b) { return a.ratio < b.ratio; }));
+      r.resolution = control_resolution(mesh, used, options.resolution);
+      seconds += r.resolution.ilp_seconds;
+    }
+    r.resolution.ilp_seconds = seconds;
+    r.resolution.num_cones_found = r.cones_found.size();
   } else {
     r.resolution.splits.assign(mesh.hexes.size(), 0);
     r.resolution.layer_of.assign(mesh.hexes.size(), -1);

@@ -26,7 +26,7 @@ double min_sj(const HexMesh& m) {
 //! padded, its padding out to [-2, 2]^2 on the sides and h/2 past the ends:
 //! the ideal geometry of a padded tube (corners 0..3 of core hexahedron i
 //! at its bottom, so face 1 is towards the next one).
-HexMesh padded_tube(int layers, double h = 2.4) {
+HexMesh padded_tube(int layers, double h = 4.0) {
   HexMesh m = test::hex_grid(1, 1, layers);
   for (Vec3& p : m.vertices) p = Vec3(2 * p.x() - 1, 2 * p.y() - 1, h * p.z());
   const std::size_t core = m.vertices.size();
@@ -71,6 +71,7 @@ TEST(ControlResolution, TemplateIsConformingAndValid) {
   EXPECT_EQ(m.hexes.size(), 6u + 58u + 6u * 8u);
   EXPECT_EQ(m.hexes.size(), planned_num_hexes(plan, 0));
   EXPECT_GT(min_sj(m), 0.1);
+  std::printf("DBG min %.3f\n", min_sj(m));
 }
 
 // The same cone with the tip split once: the 2x2 -> 4x4 cone (the template
