@@ -29,6 +29,7 @@ struct HexmeshArgs {
   std::string mesh;
   std::string outdir;
   std::string skeleton;
+  bool scaling = false;
   bool no_scaling = false;
   bool no_view = false;
   int subdivisions = -1;
@@ -54,7 +55,7 @@ nlohmann::ordered_json to_json(const HexmeshArgs& args, const Mesh& input, const
   {  // D.5: the cones found and used, the integer programme
     const ResolutionPlan& p = r.resolution;
     nlohmann::ordered_json rc;
-    rc["enabled"] = !args.no_scaling;
+    rc["enabled"] = args.scaling;
     rc["cones_found"] = r.cones_found.size();
     rc["cones_used"] = p.layers.size();
     nlohmann::ordered_json cones = nlohmann::ordered_json::array();
@@ -66,6 +67,12 @@ nlohmann::ordered_json to_json(const HexmeshArgs& args, const Mesh& input, const
                        {"base_splits", used ? tip + 1 + r.min_subdivisions : -1}});
     }
     rc["cones"] = cones;
+    std::size_t pieces = 0;
+    double worst = 1;
+    for (std::size_t h = 0; h < r.in_cone_template.size() && h < r.scaled_jacobian.size(); ++h)
+      if (r.in_cone_template[h] >= 0) ++pieces, worst = std::min(worst, r.scaled_jacobian[h]);
+    rc["template_hexahedra"] = pieces;  // the pieces of the cone templates, after their splits
+    if (pieces > 0) rc["template_min_scaled_jacobian"] = worst;
     rc["ilp"] = {{"variables", p.num_variables}, {"constraints", p.num_constraints}, {"solved", p.solved},
                  {"seconds", p.ilp_seconds}};
     j["resolution_control"] = rc;
@@ -124,7 +131,7 @@ int run_hexmesh(const HexmeshArgs& args) {
   HexMeshOptions options;
   options.progress = &progress;
   options.subdivisions = args.subdivisions;
-  options.resolution_control = !args.no_scaling;
+  options.resolution_control = args.scaling && !args.no_scaling;
   options.max_hexes = args.max_hexes;
   HexMeshResult result;
   try {
@@ -189,9 +196,13 @@ void add_hexmesh_options(CLI::App& sub, HexmeshArgs& args) {
                  "Curve-skeleton in the .skel format (header line, node count, then 'id x y z radius n "
                  "neighbours...' per node); computed (mean curvature flow + automatic clean-up) when absent")
       ->check(CLI::ExistingFile);
+  auto* scaling = sub.add_flag("--scaling", args.scaling,
+                               "Resolution control (thesis D.5): cones on terminal branches, their templates and the "
+                               "integer programme of the splits (CBC), so thick parts get more hexahedra across than "
+                               "thin limbs (off by default: fewer hexahedra, but not better quality on every model)");
   sub.add_flag("--no-scaling", args.no_scaling,
-               "Skip resolution control (thesis D.5: cones, templates, integer programme): every hexahedron is split "
-               "the same number of times");
+               "No resolution control (the default): every hexahedron is split the same number of times")
+      ->excludes(scaling);
   sub.add_flag("--no-view", args.no_view,
                "Do not write OUTDIR/view.html (the cells coloured by scaled Jacobian in 3D in a browser)");
   sub.add_option("--subdivisions", args.subdivisions,

@@ -60,21 +60,19 @@ class TemplateBuilder {
     // the inner point: in the middle, or, when the box is flatter than
     // wide, nearer the unsplit side, on the diagonal from its bottom corner
     // at 45 degrees (its two quads there would be slivers otherwise)
-    {
-      const double em = 0.5 * (e0 + e1) / kA;
+    // (measured on each of the two faces the pattern is extruded between)
+    for (int e : {e0, e1}) {
+      const double ee = static_cast<double>(e) / kA;
       auto at = [&](double s, double z) {
-        return along_a ? local_position(k, s / kA, em, z) : local_position(k, em, s / kA, z);
+        return along_a ? local_position(k, s / kA, ee, z) : local_position(k, ee, s / kA, z);
       };
       const double zgm = height(zm);
       const double w = (at(s1, zgm) - at(s0, zgm)).norm();
       const double h = (at(0.5 * (s0 + s1), height(z1)) - at(0.5 * (s0 + s1), height(z0))).norm();
       const double f = w > 0 ? std::clamp(0.5 * h / w, 0.3, 0.5) : 0.5;
       const double sc = (s0 + f * (s1 - s0)) / kA;
-      for (int e : {e0, e1}) {
-        const Point p = along_a ? Point{k, c.s, e, c.z} : Point{k, e, c.s, c.z};
-        override_.emplace(key(p), along_a ? std::array<double, 3>{sc, e / double(kA), zgm}
-                                          : std::array<double, 3>{e / double(kA), sc, zgm});
-      }
+      const Point p = along_a ? Point{k, c.s, e, c.z} : Point{k, e, c.s, c.z};
+      override_.emplace(key(p), along_a ? std::array<double, 3>{sc, ee, zgm} : std::array<double, 3>{ee, sc, zgm});
     }
     const std::array<std::array<P2, 4>, 3> quads{{{bl, br, mr, c}, {c, mr, tr, mt}, {c, mt, tl, bl}}};
     for (const auto& q : quads) {

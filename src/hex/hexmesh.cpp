@@ -4,8 +4,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 
 #include "geometry/hausdorff_distance.h"
 #include "hex/hex_optimizers.h"
@@ -253,19 +251,6 @@ HexMeshResult hexmesh(const Mesh& surface, const Skeleton* skeleton, const HexMe
   }
   r.min_subdivisions = offset;
   RefinementSchedule schedule = schedule_refinement(r.resolution, offset, r.subdivisions);
-  if (std::getenv("SUBFAB_DEBUG_D5"))
-    for (const ConeLayer& L : r.resolution.layers) {
-      auto P = [&](int v) { return mesh.vertices[idx(v)]; };
-      Vec3 ct = Vec3::Zero(), cb = Vec3::Zero();
-      for (int i = 0; i < 4; ++i) ct += P(L.tip[i]) / 4, cb += P(L.base[i]) / 4;
-      std::fprintf(stderr, "D5 layer: height %.3f tip edges %.3f %.3f base edges %.3f %.3f ring tip %.3f %.3f %.3f %.3f base %.3f %.3f %.3f %.3f\n",
-                   (cb - ct).norm(), (P(L.tip[1]) - P(L.tip[0])).norm(), (P(L.tip[2]) - P(L.tip[1])).norm(),
-                   (P(L.base[1]) - P(L.base[0])).norm(), (P(L.base[2]) - P(L.base[1])).norm(),
-                   (P(L.outer_tip[0]) - P(L.tip[0])).norm(), (P(L.outer_tip[1]) - P(L.tip[1])).norm(),
-                   (P(L.outer_tip[2]) - P(L.tip[2])).norm(), (P(L.outer_tip[3]) - P(L.tip[3])).norm(),
-                   (P(L.outer_base[0]) - P(L.base[0])).norm(), (P(L.outer_base[1]) - P(L.base[1])).norm(),
-                   (P(L.outer_base[2]) - P(L.base[2])).norm(), (P(L.outer_base[3]) - P(L.base[3])).norm());
-    }
   timer.lap("resolution control");
   // coarse to fine: optimise, split, put the new boundary vertices on the
   // surface, optimise again (an untangled mesh splits into an almost
@@ -301,13 +286,6 @@ HexMeshResult hexmesh(const Mesh& surface, const Skeleton* skeleton, const HexMe
     r.check = check_hex_mesh(r.mesh);
     r.scaled_jacobian = scaled_jacobians(r.mesh);
     r.in_cone_template = std::move(schedule.template_of);
-    if (std::getenv("SUBFAB_DEBUG_D5")) {
-      std::vector<std::size_t> order(r.scaled_jacobian.size());
-      for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-      std::sort(order.begin(), order.end(), [&](auto a, auto b) { return r.scaled_jacobian[a] < r.scaled_jacobian[b]; });
-      for (std::size_t i = 0; i < std::min<std::size_t>(15, order.size()); ++i)
-        std::fprintf(stderr, "D5 %zu sj %.3f template %d\n", order[i], r.scaled_jacobian[order[i]], r.in_cone_template[order[i]]);
-    }
     const auto& sj = r.scaled_jacobian;
     if (!sj.empty()) {
       r.min_sj = *std::min_element(sj.begin(), sj.end());

@@ -71,7 +71,6 @@ TEST(ControlResolution, TemplateIsConformingAndValid) {
   EXPECT_EQ(m.hexes.size(), 6u + 58u + 6u * 8u);
   EXPECT_EQ(m.hexes.size(), planned_num_hexes(plan, 0));
   EXPECT_GT(min_sj(m), 0.1);
-  std::printf("DBG min %.3f\n", min_sj(m));
 }
 
 // The same cone with the tip split once: the 2x2 -> 4x4 cone (the template

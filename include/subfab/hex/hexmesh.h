@@ -15,7 +15,7 @@
 //!      (its cube's or section's skeleton point) through the vertex; the core
 //!      vertex is pulled in to at most 0.6 of that ray's length so the padding
 //!      stays thick;
-//!   5. resolution control (D.5, unless `resolution_control` is off):
+//!   5. resolution control (D.5, when `resolution_control` is on):
 //!      detect_cones() on the structure, control_resolution() (the integer
 //!      programme of D.5.2, CBC) on the padded mesh: x regular splits per
 //!      hexahedron, cone layers for the templates;
@@ -55,7 +55,7 @@ struct HexMeshOptions {
   ComputeSkeletonOptions skeleton;   // when no skeleton is given
   ResampleSkeletonOptions resample;
   TubularStructureOptions tubular;
-  bool resolution_control = true;    // D.5: cones, templates and the integer programme (off: every hexahedron splits equally)
+  bool resolution_control = false;   // D.5: cones, templates and the integer programme (off: every hexahedron splits equally; see docs/hexmesh.md for why off)
   ResolutionControlOptions resolution;
   int subdivisions = -1;             // regular splits of the least split hexahedra (all of them without cones); -1: the most that keeps <= max_hexes
   std::size_t max_hexes = 20000;     // bound for the automatic choice (at least one split is always made)
