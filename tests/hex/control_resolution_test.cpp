@@ -58,8 +58,8 @@ HexMesh refine_all(const HexMesh& padded, const ResolutionPlan& plan, int offset
 // The template of Figure D.6 (1x1 -> 2x2) on an ideal padded tube, the cone
 // in the middle layer, tip down: the tip side keeps its 6 hexahedra (core
 // and 5 padding), the layer has 58, the base side 6 x 8; conforming, every
-// element valid (the worst are the 2D transitions of the first sub-layer,
-// 1/3 of the layer high and as wide as the core).
+// element valid (the worst, .17, are padding trapezoids under the 2D
+// transitions of the first two sub-layers).
 TEST(ControlResolution, TemplateIsConformingAndValid) {
   const HexMesh padded = padded_tube(3);
   const ResolutionPlan plan = control_resolution(padded, {Cone{1, 0, 5.0, true}});
