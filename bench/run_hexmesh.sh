@@ -1,6 +1,7 @@
 #!/bin/sh
 # Hexahedral meshing table of bench/RESULTS.md ("Hexahedral meshing"):
 # one model at a time, default options. Usage: bench/run_hexmesh.sh [OUT] [MODEL...]
+# Extra options in HEXMESH_FLAGS (e.g. HEXMESH_FLAGS=--scaling for resolution control, D.5).
 set -e
 out=${1:-/tmp/hexbench}
 shift 2>/dev/null || true
@@ -9,7 +10,7 @@ for m in $models; do
   name=${m%.*}
   start=$(date +%s.%N)
   code=0
-  build/subfab hexmesh ../shared/models/$m -o $out/$name --json --quiet --no-view > $out/$name.stdout 2> $out/$name.stderr || code=$?
+  ${SUBFAB:-build/subfab} hexmesh ../shared/models/$m -o $out/$name --json --quiet --no-view ${HEXMESH_FLAGS:-} > $out/$name.stdout 2> $out/$name.stderr || code=$?
   end=$(date +%s.%N)
   python3 - "$out/$name/hexmesh.json" "$name" "$code" "$start" "$end" <<'PY'
 import json, sys
@@ -23,6 +24,12 @@ print(f"{name}: exit {code}, wall {float(end) - float(start):.1f} s, tris {j['in
       f"skeleton nodes {j['skeleton_nodes']}, cubes/tubes {j['cubes']}/{j['tubes']}, hexahedra {j['hexahedra']}, "
       f"SJ avg/min {sj['avg']:.3f}/{sj['min']:.4f}, inverted {j['inverted']}, "
       f"mean/max dist {j['mean_distance_fraction']:.2e}/{j['max_distance_fraction']:.2e}, "
-      f"total {j['seconds_total']:.1f} s, optimise {j['seconds']['subdivide + project + optimise']:.1f} s")
+      f"total {j['seconds_total']:.1f} s, optimise {j['seconds']['subdivide + project + optimise']:.1f} s", end="")
+rc = j.get("resolution_control")
+if isinstance(rc, dict) and rc.get("enabled"):
+    print(f", cones found/used {rc['cones_found']}/{rc['cones_used']}, levels {j['min_subdivisions']}-{j['subdivisions']}, "
+          f"ILP {rc['ilp']['variables']} vars {rc['ilp']['seconds'] * 1000:.1f} ms")
+else:
+    print()
 PY
 done

@@ -4,6 +4,7 @@
 //! hexmesh.vtk (legacy VTK with the scaled Jacobian per cell), hexmesh.json,
 //! skeleton.skel, preview.png and (unless --no-view) view.html. Exit 2 for an
 //! unusable solid or skeleton file, 3 when the mesh is not valid (inverted element or non-conforming).
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -28,6 +29,7 @@ struct HexmeshArgs {
   std::string mesh;
   std::string outdir;
   std::string skeleton;
+  bool scaling = false;
   bool no_scaling = false;
   bool no_view = false;
   int subdivisions = -1;
@@ -49,7 +51,32 @@ nlohmann::ordered_json to_json(const HexmeshArgs& args, const Mesh& input, const
   j["tubes"] = r.structure_info.num_tubes;
   j["structure_hexahedra"] = r.structure.num_hexes();
   j["subdivisions"] = r.subdivisions;
-  j["resolution_control"] = "not implemented (D.5)";
+  j["min_subdivisions"] = r.min_subdivisions;
+  {  // D.5: the cones found and used, the integer programme
+    const ResolutionPlan& p = r.resolution;
+    nlohmann::ordered_json rc;
+    rc["enabled"] = args.scaling;
+    rc["cones_found"] = r.cones_found.size();
+    rc["cones_used"] = p.layers.size();
+    nlohmann::ordered_json cones = nlohmann::ordered_json::array();
+    for (const Cone& c : r.cones_found) {
+      const bool used = std::any_of(p.layers.begin(), p.layers.end(), [&](const ConeLayer& l) { return l.hexes[0] == c.hex; });
+      const int tip = used ? p.splits[static_cast<std::size_t>(c.hex)] : -1;
+      cones.push_back({{"hexahedron", c.hex}, {"arc", c.arc}, {"area_ratio", c.ratio}, {"used", used},
+                       {"tip_splits", used ? tip + r.min_subdivisions : -1},
+                       {"base_splits", used ? tip + 1 + r.min_subdivisions : -1}});
+    }
+    rc["cones"] = cones;
+    std::size_t pieces = 0;
+    double worst = 1;
+    for (std::size_t h = 0; h < r.in_cone_template.size() && h < r.scaled_jacobian.size(); ++h)
+      if (r.in_cone_template[h] >= 0) ++pieces, worst = std::min(worst, r.scaled_jacobian[h]);
+    rc["template_hexahedra"] = pieces;  // the pieces of the cone templates, after their splits
+    if (pieces > 0) rc["template_min_scaled_jacobian"] = worst;
+    rc["ilp"] = {{"variables", p.num_variables}, {"constraints", p.num_constraints}, {"solved", p.solved},
+                 {"seconds", p.ilp_seconds}};
+    j["resolution_control"] = rc;
+  }
   j["vertices"] = r.mesh.num_vertices();
   j["hexahedra"] = r.mesh.num_hexes();
   j["boundary_quads"] = r.check.num_boundary_quads;
@@ -92,11 +119,6 @@ HexMeshView hex_mesh_view(const HexmeshArgs& args, const Mesh& input, const HexM
 }
 
 int run_hexmesh(const HexmeshArgs& args) {
-  if (args.no_scaling) {  // refused, not silently ignored: without D.5 there is no scaling to skip
-    std::cerr << "error: --no-scaling: resolution control (D.5) is not implemented yet, so there is nothing to "
-                 "skip; run without --no-scaling (the output is the same as it would be)\n";
-    return kExitBadInput;
-  }
   ConsoleProgress progress(std::cerr, args.common.quiet, stderr_is_terminal());
   const auto start = std::chrono::steady_clock::now();
   const Mesh mesh = read_closed_solid(args.mesh, progress);  // IoError / InvalidMeshError: exit 2
@@ -109,6 +131,7 @@ int run_hexmesh(const HexmeshArgs& args) {
   HexMeshOptions options;
   options.progress = &progress;
   options.subdivisions = args.subdivisions;
+  options.resolution_control = args.scaling && !args.no_scaling;
   options.max_hexes = args.max_hexes;
   HexMeshResult result;
   try {
@@ -173,12 +196,18 @@ void add_hexmesh_options(CLI::App& sub, HexmeshArgs& args) {
                  "Curve-skeleton in the .skel format (header line, node count, then 'id x y z radius n "
                  "neighbours...' per node); computed (mean curvature flow + automatic clean-up) when absent")
       ->check(CLI::ExistingFile);
+  auto* scaling = sub.add_flag("--scaling", args.scaling,
+                               "Resolution control (thesis D.5): cones on terminal branches, their templates and the "
+                               "integer programme of the splits (CBC), so thick parts get more hexahedra across than "
+                               "thin limbs (off by default: fewer hexahedra, but not better quality on every model)");
   sub.add_flag("--no-scaling", args.no_scaling,
-               "Skip resolution control (thesis D.5); refused (exit 2) until D.5 is implemented");
+               "No resolution control (the default): every hexahedron is split the same number of times")
+      ->excludes(scaling);
   sub.add_flag("--no-view", args.no_view,
                "Do not write OUTDIR/view.html (the cells coloured by scaled Jacobian in 3D in a browser)");
   sub.add_option("--subdivisions", args.subdivisions,
-                 "Regular 2x2x2 splits after pillowing (default: automatic, the most that stays under --max-hexes)")
+                 "Regular 2x2x2 splits after pillowing of the least split hexahedra (all of them without cones; "
+                 "default: automatic, the most that stays under --max-hexes)")
       ->check(CLI::Range(0, 6));
   sub.add_option("--max-hexes", args.max_hexes, "Bound on the hexahedra for the automatic number of subdivisions")
       ->default_val(args.max_hexes)

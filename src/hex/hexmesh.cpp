@@ -14,7 +14,6 @@
 #include "subfab/hex/pillow_hex_mesh.h"
 #include "subfab/hex/raise_min_scaled_jacobian.h"
 #include "subfab/hex/scaled_jacobian.h"
-#include "subfab/hex/subdivide_hex_mesh.h"
 
 namespace subfab {
 namespace {
@@ -200,11 +199,11 @@ HexMeshResult hexmesh(const Mesh& surface, const Skeleton* skeleton, const HexMe
   }
   timer.lap("resample");
   const detail::SurfaceProjector projector(surface);
+  Skeleton sized = r.resampled;  // the skeleton the structure is built on
   {
     StageScope stage(progress, "tubular structure");
     // the core is sized from the maximal spheres: never larger than the
     // distance from the node to the surface
-    Skeleton sized = r.resampled;
     centre_skeleton_nodes(sized, projector);
     for (std::size_t v = 0; v < sized.num_nodes(); ++v) {
       const double d = (projector.closest_point(sized.points[v]) - sized.points[v]).norm();
@@ -220,14 +219,39 @@ HexMeshResult hexmesh(const Mesh& surface, const Skeleton* skeleton, const HexMe
     StageScope stage(progress, "pillow");
     const std::vector<int> outer = pillow_hex_mesh(mesh);
     place_pillow(mesh, r.structure_info.vertex_anchor, outer, projector);
-    int levels = options.subdivisions;
-    if (levels < 0) {
-      levels = 1;
-      while (mesh.hexes.size() * (std::size_t{1} << (3 * (levels + 1))) <= options.max_hexes) ++levels;
-    }
-    r.subdivisions = levels;
   }
   timer.lap("pillow");
+  // resolution control (D.5): splits per hexahedron; without it (or without
+  // cones) every hexahedron splits equally
+  if (options.resolution_control) {
+    StageScope stage(progress, "resolution control");
+    r.cones_found = detect_cones(r.structure_info, sized, options.resolution);
+    std::vector<Cone> used = r.cones_found;
+    r.resolution = control_resolution(mesh, used, options.resolution);
+    // the automatic choice keeps the bound: while one split of the least
+    // split hexahedra would already exceed it, the cone with the smallest
+    // ratio is dropped (each cone doubles the resolution of a whole part)
+    double seconds = r.resolution.ilp_seconds;
+    while (options.subdivisions < 0 && !used.empty() && planned_num_hexes(r.resolution, 1) > options.max_hexes) {
+      used.erase(std::min_element(used.begin(), used.end(),
+                                  [](const Cone& a, const Cone& b) { return a.ratio < b.ratio; }));
+      r.resolution = control_resolution(mesh, used, options.resolution);
+      seconds += r.resolution.ilp_seconds;
+    }
+    r.resolution.ilp_seconds = seconds;
+    r.resolution.num_cones_found = r.cones_found.size();
+  } else {
+    r.resolution.splits.assign(mesh.hexes.size(), 0);
+    r.resolution.layer_of.assign(mesh.hexes.size(), -1);
+  }
+  int offset = options.subdivisions;
+  if (offset < 0) {
+    offset = 1;
+    while (planned_num_hexes(r.resolution, offset + 1) <= options.max_hexes) ++offset;
+  }
+  r.min_subdivisions = offset;
+  RefinementSchedule schedule = schedule_refinement(r.resolution, offset, r.subdivisions);
+  timer.lap("resolution control");
   // coarse to fine: optimise, split, put the new boundary vertices on the
   // surface, optimise again (an untangled mesh splits into an almost
   // untangled one, so each level only has small repairs to make)
@@ -241,7 +265,7 @@ HexMeshResult hexmesh(const Mesh& surface, const Skeleton* skeleton, const HexMe
     std::vector<Vec3> targets;
     {
       StageScope stage(progress, "subdivide");
-      mesh = subdivide_hex_mesh(mesh);
+      mesh = refine_hex_mesh(mesh, schedule, i + 1);
       targets = radial_targets(mesh, projector);
     }
     oo.targets = &targets;
@@ -261,6 +285,7 @@ HexMeshResult hexmesh(const Mesh& surface, const Skeleton* skeleton, const HexMe
     r.mesh = std::move(mesh);
     r.check = check_hex_mesh(r.mesh);
     r.scaled_jacobian = scaled_jacobians(r.mesh);
+    r.in_cone_template = std::move(schedule.template_of);
     const auto& sj = r.scaled_jacobian;
     if (!sj.empty()) {
       r.min_sj = *std::min_element(sj.begin(), sj.end());

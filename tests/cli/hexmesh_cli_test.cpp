@@ -58,14 +58,29 @@ TEST(HexmeshCli, BadSkeletonFileExitsTwoWithTheLine) {
   EXPECT_NE(n.output.find("nocount.skel:2: missing node count"), std::string::npos) << n.output;
 }
 
-TEST(HexmeshCli, NoScalingIsRefusedUntilResolutionControlExists) {
+// --no-scaling (the default) skips resolution control (D.5), --scaling runs
+// it; on a uniform capsule there is no cone, so the mesh is the same.
+TEST(HexmeshCli, NoScalingSkipsResolutionControl) {
   const fs::path dir = test::temp_dir();
   const fs::path input = dir / "capsule.off";
-  write_mesh(test::capsule(), input);
-  const auto r = run_subfab("hexmesh " + quoted(input) + " -o " + quoted(dir / "o") + " --no-scaling");
-  EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_NE(r.output.find("resolution control (D.5) is not implemented yet"), std::string::npos) << r.output;
-  EXPECT_FALSE(fs::exists(dir / "o" / "hexmesh.mesh"));
+  write_mesh(test::capsule(1.0, 3.0, 32, 8, 24), input);
+  const auto off = run_subfab("hexmesh " + quoted(input) + " -o " + quoted(dir / "off") +
+                              " --subdivisions 1 --no-scaling --no-view --json --quiet");
+  ASSERT_EQ(off.exit_code, 0) << off.output;
+  const auto doc = nlohmann::json::parse(off.output);
+  EXPECT_FALSE(doc.at("resolution_control").at("enabled").get<bool>());
+  EXPECT_EQ(doc.at("resolution_control").at("cones_used").get<int>(), 0);
+  const auto on = run_subfab("hexmesh " + quoted(input) + " -o " + quoted(dir / "on") +
+                             " --subdivisions 1 --scaling --no-view --json --quiet");
+  ASSERT_EQ(on.exit_code, 0) << on.output;
+  const auto rc = nlohmann::json::parse(on.output).at("resolution_control");
+  EXPECT_TRUE(rc.at("enabled").get<bool>());
+  EXPECT_EQ(rc.at("cones_found").get<int>(), 0);
+  EXPECT_GT(rc.at("ilp").at("variables").get<int>(), 0);
+  EXPECT_TRUE(rc.at("ilp").at("solved").get<bool>());
+  EXPECT_EQ(test::slurp(dir / "on" / "hexmesh.mesh"), test::slurp(dir / "off" / "hexmesh.mesh"));
+  const auto both = run_subfab("hexmesh " + quoted(input) + " -o " + quoted(dir / "both") + " --scaling --no-scaling");
+  EXPECT_NE(both.exit_code, 0) << both.output;
 }
 
 TEST(HexmeshCli, OpenMeshExitsTwo) {

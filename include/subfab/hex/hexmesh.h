@@ -15,17 +15,22 @@
 //!      (its cube's or section's skeleton point) through the vertex; the core
 //!      vertex is pulled in to at most 0.6 of that ray's length so the padding
 //!      stays thick;
-//!   5. coarse to fine: optimize_hex_mesh() (D.6: boundary on the surface,
-//!      untangling), then `subdivisions` times: subdivide_hex_mesh() (regular
-//!      2 x 2 x 2 split), a target on the surface for each boundary vertex
-//!      along its padding edge, optimize_hex_mesh() again, which moves the
-//!      boundary there in steps that keep the elements valid (smoothing on
-//!      the last level);
-//!   6. raise_min_scaled_jacobian() on the final level: local optimisation of
+//!   5. resolution control (D.5, when `resolution_control` is on):
+//!      detect_cones() on the structure, control_resolution() (the integer
+//!      programme of D.5.2, CBC) on the padded mesh: x regular splits per
+//!      hexahedron, cone layers for the templates;
+//!   6. coarse to fine: optimize_hex_mesh() (D.6: boundary on the surface,
+//!      untangling), then level by level: refine_hex_mesh() (regular
+//!      2 x 2 x 2 splits of the hexahedra due at that level, cone templates;
+//!      without cones every hexahedron splits at every level, as
+//!      subdivide_hex_mesh()), a target on the surface for each boundary
+//!      vertex along its padding edge, optimize_hex_mesh() again, which moves
+//!      the boundary there in steps that keep the elements valid (smoothing
+//!      on the last level);
+//!   7. raise_min_scaled_jacobian() on the final level: local optimisation of
 //!      the worst elements, boundary sliding on the surface; elements still
 //!      inverted are untangled jointly, their boundary free near the surface;
-//!   7. measures: conformity, scaled Jacobians, distance to the input.
-//! Not done yet: resolution control (D.5, cones and the integer programme).
+//!   8. measures: conformity, scaled Jacobians, distance to the input.
 #pragma once
 
 #include <array>
@@ -37,6 +42,7 @@
 #include "subfab/core/progress.h"
 #include "subfab/hex/build_tubular_structure.h"
 #include "subfab/hex/compute_skeleton.h"
+#include "subfab/hex/control_resolution.h"
 #include "subfab/hex/hex_mesh.h"
 #include "subfab/hex/optimize_hex_mesh.h"
 #include "subfab/hex/raise_min_scaled_jacobian.h"
@@ -49,7 +55,9 @@ struct HexMeshOptions {
   ComputeSkeletonOptions skeleton;   // when no skeleton is given
   ResampleSkeletonOptions resample;
   TubularStructureOptions tubular;
-  int subdivisions = -1;             // regular splits after pillowing; -1: the most that keeps <= max_hexes
+  bool resolution_control = false;   // D.5: cones, templates and the integer programme (off: every hexahedron splits equally; see docs/hexmesh.md for why off)
+  ResolutionControlOptions resolution;
+  int subdivisions = -1;             // regular splits of the least split hexahedra (all of them without cones); -1: the most that keeps <= max_hexes
   std::size_t max_hexes = 20000;     // bound for the automatic choice (at least one split is always made)
   OptimizeHexMeshOptions optimize;
   bool raise_min = true;             // run raise_min_scaled_jacobian() on the final level
@@ -64,8 +72,12 @@ struct HexMeshResult {
   TubularStructure structure_info;
   HexMesh mesh;             // the final mesh
   std::vector<double> scaled_jacobian;  // per hexahedron
+  std::vector<int> in_cone_template;    // per hexahedron: the cone layer whose template it is a piece of, or -1
   HexMeshCheck check;
-  int subdivisions = 0;
+  int subdivisions = 0;     // levels of the coarse-to-fine refinement (the splits of the most split hexahedra)
+  int min_subdivisions = 0; // splits of the least split hexahedra (= subdivisions without cones)
+  std::vector<Cone> cones_found;  // D.5.1, before the integer programme
+  ResolutionPlan resolution;      // D.5.2 (splits per hexahedron of the padded structure, cone layers used)
   double min_sj = 0, avg_sj = 0, max_sj = 0;
   std::array<std::size_t, 11> histogram{};  // [<= 0], then (0, .1], (.1, .2], ..., (.9, 1]
   double diagonal = 0;                      // of the input's bounding box
