@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "hex/hex_corners.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "subfab/hex/scaled_jacobian.h"
 
 namespace subfab::detail {
@@ -57,6 +60,38 @@ double corner_determinant_gradient(const HexMesh& mesh, const HexCorner& k, int 
     if (hex[idx(n[i])] == v) gradient += g[i];
   if (hex[idx(k.corner)] == v) gradient -= g[0] + g[1] + g[2];
   return e[0].dot(e[1].cross(e[2]));
+}
+
+VertexStar vertex_star(const HexMesh& mesh, const std::vector<int>& hexes, std::size_t v, double sharpness) {
+  VertexStar st;
+  st.v = v;
+  st.hexes = &hexes;
+  st.moved.resize(8 * hexes.size());
+  st.fixed_min.resize(hexes.size());
+  if (sharpness > 0) st.fixed_exp.resize(8 * hexes.size());
+  for (std::size_t j = 0; j < hexes.size(); ++j) {
+    const Hex& hex = mesh.hexes[idx(hexes[j])];
+    double m = 1.0;
+    for (std::size_t i = 0; i < 8; ++i) {
+      const auto& n = kHexCornerNeighbors[i];
+      const bool moved = idx(hex[i]) == v || idx(hex[idx(n[0])]) == v || idx(hex[idx(n[1])]) == v ||
+                         idx(hex[idx(n[2])]) == v;
+      st.moved[8 * j + i] = moved;
+      if (moved) continue;
+      const double alpha = corner_determinant(mesh, {hexes[j], static_cast<int>(i)});
+      m = std::min(m, alpha);
+      if (sharpness > 0) st.fixed_exp[8 * j + i] = std::exp(-sharpness * alpha);
+    }
+    st.fixed_min[j] = m;
+  }
+  return st;
+}
+
+double star_hex_quality(const HexMesh& mesh, const VertexStar& star, std::size_t j) {
+  double q = star.fixed_min[j];
+  for (std::size_t i = 0; i < 8; ++i)
+    if (star.moved[8 * j + i]) q = std::min(q, corner_determinant(mesh, {(*star.hexes)[j], static_cast<int>(i)}));
+  return q;
 }
 
 }  // namespace subfab::detail

@@ -3,10 +3,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <string>
 
 #include "hex/gauss_seidel_schedule.h"
+#include "hex/hex_corners.h"
 #include "hex/hex_optimizers.h"
 #include "hex/hex_topology.h"
 #include "hex/surface_projector.h"
@@ -25,32 +25,7 @@ constexpr int kPatience = 10;             // passes without progress before givi
 constexpr double kArrived = 1e-12;        // squared distance at which a vertex is at its target
 constexpr double kReach = 1.0;            // untangling moves a vertex at most this many mean edges
 
-//! The corners of the hexahedra around a vertex v, with the values of the
-//! corners v does not move cached: while a visit moves only v they are
-//! constant, so the energy and the worst element of v's hexahedra need only
-//! the corners v moves (half of them). The sums and minima run over the same
-//! values in the same order as without the cache: bit-identical results.
-struct Star {
-  std::size_t v = 0;
-  std::vector<double> fixed_exp;  // per (hexahedron of v, corner): exp(-sharpness x corner) if v does not move it, else NaN
-  std::vector<double> fixed_min;  // per hexahedron of v: min(1, the corners v does not move)
-  std::vector<char> moved;        // per (hexahedron of v, corner): v moves it
-};
-
-//! Determinant of the three normalised edges at corner i of hex; -1 if an
-//! edge has zero length (as scaled_jacobian()).
-double corner_alpha(const HexMesh& mesh, const Hex& hex, std::size_t i) {
-  const auto& n = kHexCornerNeighbors[i];
-  const Vec3& p = mesh.vertices[idx(hex[i])];
-  Vec3 ed[3];
-  for (std::size_t k = 0; k < 3; ++k) {
-    ed[k] = mesh.vertices[idx(hex[idx(n[k])])] - p;
-    const double len = ed[k].norm();
-    if (!(len > 0)) return -1.0;
-    ed[k] /= len;
-  }
-  return ed[0].dot(ed[1].cross(ed[2]));
-}
+using detail::VertexStar;
 
 struct Optimizer {
   HexMesh& mesh;
@@ -69,48 +44,15 @@ struct Optimizer {
     return (q - anchor).norm() <= reach[v];
   }
 
-  Star star(std::size_t v) const {
-    Star st;
-    st.v = v;
-    const auto& hexes = topo.vertex_hexes[v];
-    st.fixed_exp.resize(8 * hexes.size());
-    st.fixed_min.resize(hexes.size());
-    st.moved.resize(8 * hexes.size());
-    for (std::size_t j = 0; j < hexes.size(); ++j) {
-      const Hex& hex = mesh.hexes[idx(hexes[j])];
-      double m = 1.0;
-      for (std::size_t i = 0; i < 8; ++i) {
-        const auto& n = kHexCornerNeighbors[i];
-        const bool moved = idx(hex[i]) == v || idx(hex[idx(n[0])]) == v || idx(hex[idx(n[1])]) == v ||
-                           idx(hex[idx(n[2])]) == v;
-        st.moved[8 * j + i] = moved;
-        if (moved) {
-          st.fixed_exp[8 * j + i] = std::numeric_limits<double>::quiet_NaN();
-        } else {
-          const double alpha = corner_alpha(mesh, hex, i);
-          st.fixed_exp[8 * j + i] = std::exp(-kSharpness * alpha);
-          m = std::min(m, alpha);
-        }
-      }
-      st.fixed_min[j] = m;
-    }
-    return st;
-  }
+  VertexStar star(std::size_t v) const { return detail::vertex_star(mesh, topo.vertex_hexes[v], v, kSharpness); }
 
   //! The worst scaled Jacobian of v's hexahedra.
-  double worst_at(const Star& st) const {
-    const auto& hexes = topo.vertex_hexes[st.v];
+  double worst_at(const VertexStar& st) const {
     double worst = 1;
-    for (std::size_t j = 0; j < hexes.size(); ++j) {
-      const Hex& hex = mesh.hexes[idx(hexes[j])];
-      double q = st.fixed_min[j];
-      for (std::size_t i = 0; i < 8; ++i)
-        if (st.moved[8 * j + i]) q = std::min(q, corner_alpha(mesh, hex, i));
-      worst = std::min(worst, q);
-    }
+    for (std::size_t j = 0; j < st.hexes->size(); ++j) worst = std::min(worst, detail::star_hex_quality(mesh, st, j));
     return worst;
   }
-  double worst_if(const Star& st, const Vec3& p) {
+  double worst_if(const VertexStar& st, const Vec3& p) {
     const Vec3 old = mesh.vertices[st.v];
     mesh.vertices[st.v] = p;
     const double q = worst_at(st);
@@ -155,7 +97,7 @@ struct Optimizer {
         on_surface[v] = 1;
         return;
       }
-      const Star st = star(v);
+      const VertexStar st = star(v);
       const double guard = std::min(floor, worst_at(st));
       for (double t : {1.0, 0.5, 0.25}) {
         const Vec3 q = t == 1.0 ? target[v] : Vec3(p + t * d);
@@ -178,7 +120,7 @@ struct Optimizer {
       if (!topo.on_boundary[v] || on_surface[v]) order.push_back(v);
     std::vector<char> moved(mesh.vertices.size(), 0);
     detail::gauss_seidel_sweep(mesh, topo, order, [&](std::size_t v) {
-      const Star st = star(v);
+      const VertexStar st = star(v);
       const double before = worst_at(st);
       const Vec3 target_point = mean_target(v);
       if (worst_if(st, target_point) >= std::min(before, kSmoothCap)) {  // no worse (ignoring changes near 1)
@@ -192,19 +134,15 @@ struct Optimizer {
   //! Soft-min energy of the corners of v's hexahedra: sum of
   //! exp(-sharpness x corner scaled Jacobian); dominated by the worst corners
   //! but smooth, so a gradient step can trade one corner against another.
-  double energy_at(const Star& st) const {
-    const auto& hexes = topo.vertex_hexes[st.v];
+  double energy_at(const VertexStar& st) const {
     double e = 0;
-    for (std::size_t j = 0; j < hexes.size(); ++j) {
-      const Hex& hex = mesh.hexes[idx(hexes[j])];
-      for (std::size_t i = 0; i < 8; ++i) {
-        const double fixed = st.fixed_exp[8 * j + i];
-        e += st.moved[8 * j + i] ? std::exp(-kSharpness * corner_alpha(mesh, hex, i)) : fixed;
-      }
-    }
+    for (std::size_t j = 0; j < st.hexes->size(); ++j)
+      for (std::size_t i = 0; i < 8; ++i)
+        e += st.moved[8 * j + i] ? std::exp(-kSharpness * detail::corner_determinant(mesh, {(*st.hexes)[j], static_cast<int>(i)}))
+                                 : st.fixed_exp[8 * j + i];
     return e;
   }
-  double energy_if(const Star& st, const Vec3& p) {
+  double energy_if(const VertexStar& st, const Vec3& p) {
     const Vec3 old = mesh.vertices[st.v];
     mesh.vertices[st.v] = p;
     const double e = energy_at(st);
@@ -221,7 +159,7 @@ struct Optimizer {
     const double scale = edge_scale(v);
     if (!(scale > 0)) return false;
     const double h = 1e-4 * scale;
-    const Star st = star(v);
+    const VertexStar st = star(v);
     const double start = energy_at(st);
     double current = start;
     for (int iter = 0; iter < 4; ++iter) {
@@ -274,7 +212,7 @@ struct Optimizer {
   bool raise_worst(std::size_t v) {
     const double scale = edge_scale(v);
     if (!(scale > 0)) return false;
-    const Star st = star(v);
+    const VertexStar st = star(v);
     double current = worst_at(st);
     const double start = current;
     for (double step = 0.2 * scale; step > 0.01 * scale; step *= 0.5) {
