@@ -66,32 +66,95 @@ VertexStar vertex_star(const HexMesh& mesh, const std::vector<int>& hexes, std::
   VertexStar st;
   st.v = v;
   st.hexes = &hexes;
-  st.moved.resize(8 * hexes.size());
+  st.slot.assign(8 * hexes.size(), -1);
   st.fixed_min.resize(hexes.size());
   if (sharpness > 0) st.fixed_exp.resize(8 * hexes.size());
+  auto neighbour_index = [&](int w) {
+    for (std::size_t s = 0; s < st.neighbours.size(); ++s)
+      if (st.neighbours[s] == w) return static_cast<int>(s);
+    st.neighbours.push_back(w);
+    return static_cast<int>(st.neighbours.size() - 1);
+  };
   for (std::size_t j = 0; j < hexes.size(); ++j) {
     const Hex& hex = mesh.hexes[idx(hexes[j])];
     double m = 1.0;
     for (std::size_t i = 0; i < 8; ++i) {
       const auto& n = kHexCornerNeighbors[i];
-      const bool moved = idx(hex[i]) == v || idx(hex[idx(n[0])]) == v || idx(hex[idx(n[1])]) == v ||
-                         idx(hex[idx(n[2])]) == v;
-      st.moved[8 * j + i] = moved;
-      if (moved) continue;
+      const bool own = idx(hex[i]) == v;
+      if (own || idx(hex[idx(n[0])]) == v || idx(hex[idx(n[1])]) == v || idx(hex[idx(n[2])]) == v) {
+        VertexStar::Moved c{};
+        c.degenerate = false;
+        const Vec3& p = mesh.vertices[idx(hex[i])];
+        for (std::size_t k = 0; k < 3; ++k) {
+          const int w = hex[idx(n[k])];
+          c.neighbour[k] = -1;
+          c.sign[k] = 0;
+          if (own) {  // edge from v to w
+            c.neighbour[k] = neighbour_index(w);
+            c.sign[k] = 1;
+          } else if (idx(w) == v) {  // edge from hex[i] to v
+            c.neighbour[k] = neighbour_index(hex[i]);
+            c.sign[k] = -1;
+          } else {
+            Vec3 e = mesh.vertices[idx(w)] - p;
+            const double len = e.norm();
+            if (!(len > 0)) c.degenerate = true;
+            else e /= len;
+            c.fixed[k] = e;
+          }
+        }
+        st.slot[8 * j + i] = static_cast<int>(st.moved.size());
+        st.moved.push_back(c);
+        continue;
+      }
       const double alpha = corner_determinant(mesh, {hexes[j], static_cast<int>(i)});
       m = std::min(m, alpha);
       if (sharpness > 0) st.fixed_exp[8 * j + i] = std::exp(-sharpness * alpha);
     }
     st.fixed_min[j] = m;
   }
+  st.units.resize(st.neighbours.size());
+  st.zero.resize(st.neighbours.size());
+  st.values.resize(st.moved.size());
   return st;
 }
 
-double star_hex_quality(const HexMesh& mesh, const VertexStar& star, std::size_t j) {
-  double q = star.fixed_min[j];
+void evaluate_star(const HexMesh& mesh, const VertexStar& st) {
+  const Vec3& p = mesh.vertices[st.v];
+  for (std::size_t s = 0; s < st.neighbours.size(); ++s) {
+    Vec3 e = mesh.vertices[idx(st.neighbours[s])] - p;
+    const double len = e.norm();
+    st.zero[s] = !(len > 0);
+    if (len > 0) e /= len;
+    st.units[s] = e;
+  }
+  for (std::size_t c = 0; c < st.moved.size(); ++c) {
+    const VertexStar::Moved& m = st.moved[c];
+    Vec3 e[3];
+    bool degenerate = m.degenerate;
+    for (std::size_t k = 0; k < 3; ++k) {
+      if (m.neighbour[k] < 0) {
+        e[k] = m.fixed[k];
+      } else {
+        degenerate = degenerate || st.zero[idx(m.neighbour[k])];
+        e[k] = m.sign[k] > 0 ? st.units[idx(m.neighbour[k])] : Vec3(-st.units[idx(m.neighbour[k])]);
+      }
+    }
+    st.values[c] = degenerate ? -1.0 : e[0].dot(e[1].cross(e[2]));
+  }
+}
+
+double star_hex_quality(const VertexStar& st, std::size_t j) {
+  double q = st.fixed_min[j];
   for (std::size_t i = 0; i < 8; ++i)
-    if (star.moved[8 * j + i]) q = std::min(q, corner_determinant(mesh, {(*star.hexes)[j], static_cast<int>(i)}));
+    if (const int c = st.slot[8 * j + i]; c >= 0) q = std::min(q, st.values[idx(c)]);
   return q;
+}
+
+double star_min_moved(const VertexStar& st) {
+  double m = 1.0;
+  for (double x : st.values) m = std::min(m, x);
+  return m;
 }
 
 }  // namespace subfab::detail

@@ -31,24 +31,47 @@ double corner_determinant(const HexMesh& mesh, const HexCorner& k);
 //! position of vertex v (one of the corner's four vertices; zero otherwise).
 double corner_determinant_gradient(const HexMesh& mesh, const HexCorner& k, int v, Vec3& gradient);
 
-//! The hexahedra around a vertex v, with the corners v does not move
-//! evaluated once: while an optimiser's visit moves only v they are
-//! constant, so the scaled Jacobians and energies of v's hexahedra need only
-//! the corners v moves (half of them). Minima and sums run over the same
-//! values in the same order as a full evaluation: bit-identical results.
+//! The hexahedra around a vertex v, prepared for evaluating them many times
+//! while only v moves (the optimisers' line searches): the corners v does
+//! not move are evaluated once; of those it moves, the edges that do not end
+//! at v are normalised once, and the edges that do are normalised once per
+//! evaluation for each distinct neighbour of v (6 or so instead of 96
+//! normalisations for 8 hexahedra). Every corner value is computed by the
+//! very operations of corner_determinant() (an edge towards v is the exact
+//! negation of v's edge towards it), so the values, and sums and minima over
+//! them in the same order, are bit-identical to a full evaluation.
 struct VertexStar {
+  //! One corner that v moves: its value is e0 . (e1 x e2), edge k being
+  //! fixed[k] or, for the edges at v, +-(unit edge from v to neighbour[k]).
+  struct Moved {
+    int neighbour[3];  // per edge: index into `neighbours` of its end other than the corner vertex (-1: fixed edge)
+    double sign[3];    // +1: the corner is v, the edge leaves v; -1: the edge arrives at v
+    Vec3 fixed[3];     // the fixed edges, normalised
+    bool degenerate;   // a fixed edge has zero length: the corner is -1 wherever v is
+  };
   std::size_t v = 0;
   const std::vector<int>* hexes = nullptr;  // v's hexahedra (HexTopology::vertex_hexes[v])
-  std::vector<char> moved;                  // per (hexahedron, corner): v moves it
+  std::vector<int> slot;                    // per (hexahedron, corner): index into `moved`, -1 if v does not move it
+  std::vector<Moved> moved;
+  std::vector<int> neighbours;              // the vertices joined to v by an edge of its hexahedra
   std::vector<double> fixed_min;            // per hexahedron: min(1, the corners v does not move)
   std::vector<double> fixed_exp;            // per (hexahedron, corner) v does not move: exp(-sharpness x corner)
+  mutable std::vector<Vec3> units;          // per neighbour: unit edge from v (evaluate_star)
+  mutable std::vector<char> zero;           // per neighbour: that edge has zero length
+  mutable std::vector<double> values;       // per moved corner: its value (evaluate_star)
 };
 
 //! The star of v over `hexes`; fixed_exp only when sharpness > 0.
 VertexStar vertex_star(const HexMesh& mesh, const std::vector<int>& hexes, std::size_t v, double sharpness = 0);
 
-//! The scaled Jacobian of the j-th hexahedron of the star, at the current
-//! position of its vertex (== scaled_jacobian(mesh, hexes[j])).
-double star_hex_quality(const HexMesh& mesh, const VertexStar& star, std::size_t j);
+//! Fills star.values for v at its current position in `mesh`.
+void evaluate_star(const HexMesh& mesh, const VertexStar& star);
+
+//! The scaled Jacobian of the j-th hexahedron of the star, after
+//! evaluate_star() (== scaled_jacobian(mesh, hexes[j])).
+double star_hex_quality(const VertexStar& star, std::size_t j);
+
+//! The smallest corner v moves, after evaluate_star() (1 if none).
+double star_min_moved(const VertexStar& star);
 
 }  // namespace subfab::detail

@@ -49,7 +49,8 @@ struct Optimizer {
   //! The worst scaled Jacobian of v's hexahedra.
   double worst_at(const VertexStar& st) const {
     double worst = 1;
-    for (std::size_t j = 0; j < st.hexes->size(); ++j) worst = std::min(worst, detail::star_hex_quality(mesh, st, j));
+    detail::evaluate_star(mesh, st);
+    for (std::size_t j = 0; j < st.hexes->size(); ++j) worst = std::min(worst, detail::star_hex_quality(st, j));
     return worst;
   }
   double worst_if(const VertexStar& st, const Vec3& p) {
@@ -135,11 +136,13 @@ struct Optimizer {
   //! exp(-sharpness x corner scaled Jacobian); dominated by the worst corners
   //! but smooth, so a gradient step can trade one corner against another.
   double energy_at(const VertexStar& st) const {
+    detail::evaluate_star(mesh, st);
     double e = 0;
     for (std::size_t j = 0; j < st.hexes->size(); ++j)
-      for (std::size_t i = 0; i < 8; ++i)
-        e += st.moved[8 * j + i] ? std::exp(-kSharpness * detail::corner_determinant(mesh, {(*st.hexes)[j], static_cast<int>(i)}))
-                                 : st.fixed_exp[8 * j + i];
+      for (std::size_t i = 0; i < 8; ++i) {
+        const int c = st.slot[8 * j + i];
+        e += c >= 0 ? std::exp(-kSharpness * st.values[idx(c)]) : st.fixed_exp[8 * j + i];
+      }
     return e;
   }
   double energy_if(const VertexStar& st, const Vec3& p) {

@@ -52,20 +52,21 @@ class Raiser {
   double corner_value(const HexCorner& k) const { return detail::corner_determinant(mesh_, k); }
 
   //! Smallest corner v affects, with v at p.
-  double local_min(std::size_t v, const Vec3& p) {
-    const Vec3 old = mesh_.vertices[v];
-    mesh_.vertices[v] = p;
-    double m = 1.0;
-    for (const HexCorner& k : corners_[v]) m = std::min(m, corner_value(k));
-    mesh_.vertices[v] = old;
+  double local_min(const detail::VertexStar& st, const Vec3& p) {
+    const Vec3 old = mesh_.vertices[st.v];
+    mesh_.vertices[st.v] = p;
+    detail::evaluate_star(mesh_, st);
+    const double m = detail::star_min_moved(st);
+    mesh_.vertices[st.v] = old;
     return m;
   }
   double soft_energy(const detail::VertexStar& st, const Vec3& p, double shift) {
     const Vec3 old = mesh_.vertices[st.v];
     mesh_.vertices[st.v] = p;
+    detail::evaluate_star(mesh_, st);
     double e = 0;
     for (std::size_t j = 0; j < st.hexes->size(); ++j) {
-      const double q = detail::star_hex_quality(mesh_, st, j);
+      const double q = detail::star_hex_quality(st, j);
       e += std::exp(-kSharpness * (q - shift)) - kLinear * q;
     }
     mesh_.vertices[st.v] = old;
@@ -101,7 +102,7 @@ class Raiser {
     if (!(scale > 0)) return 0;
     std::size_t moves = 0;
     const detail::VertexStar st = detail::vertex_star(mesh_, topo_.vertex_hexes[v], v);
-    Score current = score(st, mesh_.vertices[v], local_min(v, mesh_.vertices[v]));
+    Score current = score(st, mesh_.vertices[v], local_min(st, mesh_.vertices[v]));
     const bool slides = topo_.on_boundary[v] && !free_boundary;
     for (int it = 0; it < kMovesPerVisit; ++it) {
       const Vec3 p = mesh_.vertices[v];
@@ -203,7 +204,7 @@ class Raiser {
     double energy;  // soft-min energy of the affected corners
   };
   Score score(const detail::VertexStar& st, const Vec3& p, double shift) {
-    return {local_min(st.v, p), soft_energy(st, p, shift)};
+    return {local_min(st, p), soft_energy(st, p, shift)};
   }
   //! Moves v to (the placement of) q if that raises its smallest corner, or,
   //! with `smooth`, lowers the soft-min energy without lowering it.
@@ -212,7 +213,7 @@ class Raiser {
     const std::size_t v = st.v;
     Vec3 to;
     if (!place(v, q, free_boundary, to)) return false;
-    const double m = local_min(v, to);
+    const double m = local_min(st, to);
     if (m < current.min) return false;
     double e = current.energy;
     if (smooth) {  // lower the energy, keeping the smallest corner
