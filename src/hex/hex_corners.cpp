@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "subfab/core/parallel.h"
 #include "subfab/hex/scaled_jacobian.h"
 
 namespace subfab::detail {
@@ -62,7 +63,8 @@ double corner_determinant_gradient(const HexMesh& mesh, const HexCorner& k, int 
   return e[0].dot(e[1].cross(e[2]));
 }
 
-VertexStar vertex_star(const HexMesh& mesh, const std::vector<int>& hexes, std::size_t v, double sharpness) {
+VertexStar vertex_star(const HexMesh& mesh, const std::vector<int>& hexes, std::size_t v, double sharpness,
+                       const std::vector<double>* corner_values) {
   VertexStar st;
   st.v = v;
   st.hexes = &hexes;
@@ -107,7 +109,8 @@ VertexStar vertex_star(const HexMesh& mesh, const std::vector<int>& hexes, std::
         st.moved.push_back(c);
         continue;
       }
-      const double alpha = corner_determinant(mesh, {hexes[j], static_cast<int>(i)});
+      const double alpha = corner_values ? (*corner_values)[8 * idx(hexes[j]) + i]
+                                         : corner_determinant(mesh, {hexes[j], static_cast<int>(i)});
       m = std::min(m, alpha);
       if (sharpness > 0) st.fixed_exp[8 * j + i] = std::exp(-sharpness * alpha);
     }
@@ -149,6 +152,31 @@ double star_hex_quality(const VertexStar& st, std::size_t j) {
   for (std::size_t i = 0; i < 8; ++i)
     if (const int c = st.slot[8 * j + i]; c >= 0) q = std::min(q, st.values[idx(c)]);
   return q;
+}
+
+void store_star(const HexMesh& mesh, const VertexStar& st, std::vector<double>& corner_values) {
+  evaluate_star(mesh, st);
+  for (std::size_t j = 0; j < st.hexes->size(); ++j)
+    for (std::size_t i = 0; i < 8; ++i)
+      if (const int c = st.slot[8 * j + i]; c >= 0) corner_values[8 * idx((*st.hexes)[j]) + i] = st.values[idx(c)];
+}
+
+std::vector<double> all_corner_values(const HexMesh& mesh) {
+  std::vector<double> out(8 * mesh.hexes.size());
+  parallel_for(0, mesh.hexes.size(), [&](std::size_t h) {
+    for (int c = 0; c < 8; ++c) out[8 * h + idx(c)] = corner_determinant(mesh, {static_cast<int>(h), c});
+  }, 256);
+  return out;
+}
+
+std::vector<double> hex_qualities(const std::vector<double>& corner_values) {
+  std::vector<double> out(corner_values.size() / 8);
+  parallel_for(0, out.size(), [&](std::size_t h) {
+    double q = 1.0;
+    for (std::size_t c = 0; c < 8; ++c) q = std::min(q, corner_values[8 * h + c]);
+    out[h] = q;
+  }, 1024);
+  return out;
 }
 
 double star_min_moved(const VertexStar& st) {

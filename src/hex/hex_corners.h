@@ -61,8 +61,22 @@ struct VertexStar {
   mutable std::vector<double> values;       // per moved corner: its value (evaluate_star)
 };
 
-//! The star of v over `hexes`; fixed_exp only when sharpness > 0.
-VertexStar vertex_star(const HexMesh& mesh, const std::vector<int>& hexes, std::size_t v, double sharpness = 0);
+//! The star of v over `hexes`; fixed_exp only when sharpness > 0. With
+//! `corner_values` (8 per hexahedron of the mesh, up to date), the corners v
+//! does not move are read from it instead of computed.
+VertexStar vertex_star(const HexMesh& mesh, const std::vector<int>& hexes, std::size_t v, double sharpness = 0,
+                       const std::vector<double>* corner_values = nullptr);
+
+//! Writes the values of the corners v moves into `corner_values` (8 per
+//! hexahedron of the mesh) for v at its current position.
+void store_star(const HexMesh& mesh, const VertexStar& star, std::vector<double>& corner_values);
+
+//! Every corner's determinant, 8 per hexahedron (in parallel).
+std::vector<double> all_corner_values(const HexMesh& mesh);
+
+//! Per hexahedron: its scaled Jacobian from its 8 corner values
+//! (== scaled_jacobians(mesh) when they are up to date).
+std::vector<double> hex_qualities(const std::vector<double>& corner_values);
 
 //! Fills star.values for v at its current position in `mesh`.
 void evaluate_star(const HexMesh& mesh, const VertexStar& star);

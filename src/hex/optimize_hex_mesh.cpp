@@ -35,6 +35,7 @@ struct Optimizer {
   std::vector<char> on_surface;  // per vertex: a boundary vertex that has reached the surface
   std::vector<Vec3> origin;      // per vertex: where it was when the optimisation began
   std::vector<double> reach;     // per vertex: how far untangling may take it (its mean edge then)
+  std::vector<double> corner_values;  // per hexahedron, 8 corner determinants, kept up to date by every move
 
   //! Untangling may not take a vertex farther than its reach from where it
   //! began (a boundary vertex: from its target): otherwise an inverted
@@ -44,7 +45,14 @@ struct Optimizer {
     return (q - anchor).norm() <= reach[v];
   }
 
-  VertexStar star(std::size_t v) const { return detail::vertex_star(mesh, topo.vertex_hexes[v], v, kSharpness); }
+  //! With the cached energies of the fixed corners only for untangling.
+  VertexStar star(std::size_t v, bool energy = false) const {
+    return detail::vertex_star(mesh, topo.vertex_hexes[v], v, energy ? kSharpness : 0.0, &corner_values);
+  }
+  //! After v moved: its corners' new values into the cache.
+  void store(const VertexStar& st) { detail::store_star(mesh, st, corner_values); }
+  //! The scaled Jacobian of every hexahedron, from the cache.
+  std::vector<double> qualities() const { return detail::hex_qualities(corner_values); }
 
   //! The worst scaled Jacobian of v's hexahedra.
   double worst_at(const VertexStar& st) const {
@@ -93,12 +101,13 @@ struct Optimizer {
     detail::gauss_seidel_sweep(mesh, topo, order, [&](std::size_t v) {
       const Vec3 p = mesh.vertices[v];
       const Vec3 d = target[v] - p;
+      const VertexStar st = star(v);
       if (d.squaredNorm() <= kArrived) {
         mesh.vertices[v] = target[v];
         on_surface[v] = 1;
+        store(st);
         return;
       }
-      const VertexStar st = star(v);
       const double guard = std::min(floor, worst_at(st));
       for (double t : {1.0, 0.5, 0.25}) {
         const Vec3 q = t == 1.0 ? target[v] : Vec3(p + t * d);
@@ -106,6 +115,7 @@ struct Optimizer {
           mesh.vertices[v] = q;
           on_surface[v] = t == 1.0;
           moved[v] = 1;
+          store(st);
           break;
         }
       }
@@ -127,6 +137,7 @@ struct Optimizer {
       if (worst_if(st, target_point) >= std::min(before, kSmoothCap)) {  // no worse (ignoring changes near 1)
         mesh.vertices[v] = target_point;
         moved[v] = 1;
+        store(st);
       }
     });
     return static_cast<std::size_t>(std::count(moved.begin(), moved.end(), 1));
@@ -162,7 +173,8 @@ struct Optimizer {
     const double scale = edge_scale(v);
     if (!(scale > 0)) return false;
     const double h = 1e-4 * scale;
-    const VertexStar st = star(v);
+    const VertexStar st = star(v, true);
+    const Vec3 start_position = mesh.vertices[v];
     const double start = energy_at(st);
     double current = start;
     for (int iter = 0; iter < 4; ++iter) {
@@ -199,6 +211,7 @@ struct Optimizer {
       }
       if (!moved) break;
     }
+    if (mesh.vertices[v] != start_position) store(st);
     const bool improved = current < start * (1 - 1e-9);
     if (improved && topo.on_boundary[v] && !constrained) {  // it left or slid off the surface
       on_surface[v] = 0;
@@ -239,6 +252,7 @@ struct Optimizer {
         }
       }
     }
+    if (current > start) store(st);
     if (current > start && topo.on_boundary[v]) {
       on_surface[v] = 0;
       target[v] = surface.closest_point(mesh.vertices[v]);
@@ -268,14 +282,15 @@ double min_of(const std::vector<double>& sj) { return sj.empty() ? 1.0 : *std::m
 int run_passes(Optimizer& opt, const OptimizeHexMeshOptions& options, double threshold, bool free_boundary,
                bool smooth) {
   HexMesh& mesh = opt.mesh;
-  double best = min_of(scaled_jacobians(mesh));
+  opt.corner_values = detail::all_corner_values(mesh);
+  double best = min_of(opt.qualities());
   double best_remaining = free_boundary ? 0.0 : opt.remaining();
   int since_progress = 0, pass = 0;
   while (pass < options.passes) {
     ++pass;
     if (!free_boundary) opt.project_step(options.projection_floor);
     if (smooth) opt.smart_smooth();
-    const auto sj = scaled_jacobians(mesh);
+    const auto sj = opt.qualities();
     std::vector<char> bad(mesh.vertices.size(), 0);
     for (std::size_t h = 0; h < sj.size(); ++h)
       if (sj[h] < threshold)
@@ -291,7 +306,7 @@ int run_passes(Optimizer& opt, const OptimizeHexMeshOptions& options, double thr
       options.progress->update(static_cast<std::size_t>(pass), static_cast<std::size_t>(options.passes));
     // stop when done, or when neither the worst element nor the distance
     // left to the surface has improved for kPatience passes
-    const double worst_now = min_of(scaled_jacobians(mesh));
+    const double worst_now = min_of(opt.qualities());
     const double left = free_boundary ? 0.0 : opt.remaining();
     if (worst_now >= threshold && left == 0) break;
     if (worst_now > best + kProgress || left < (1 - 1e-2) * best_remaining) {
@@ -316,7 +331,7 @@ OptimizeHexMeshReport detail::optimize_hex_mesh(HexMesh& mesh, const SurfaceProj
                                                 const OptimizeHexMeshOptions& options) {
   OptimizeHexMeshReport report;
   const detail::HexTopology topo = detail::hex_topology(mesh);
-  Optimizer opt{mesh, topo, projector, {}, {}, {}, {}};
+  Optimizer opt{mesh, topo, projector, {}, {}, {}, {}, {}};
   opt.target.assign(mesh.vertices.size(), Vec3::Zero());
   opt.on_surface.assign(mesh.vertices.size(), 0);
   opt.origin = mesh.vertices;
@@ -332,6 +347,7 @@ OptimizeHexMeshReport detail::optimize_hex_mesh(HexMesh& mesh, const SurfaceProj
         opt.target[v] = options.targets ? (*options.targets)[v] : projector.closest_point(mesh.vertices[v]);
     }, 512);
     report.min_before = min_of(scaled_jacobians(mesh));
+    opt.corner_values = detail::all_corner_values(mesh);
     if (options.guard_projection) {
       opt.project_step(options.projection_floor);
     } else {  // unguarded: every boundary vertex straight to its target
