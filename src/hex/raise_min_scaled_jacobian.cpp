@@ -48,6 +48,10 @@ class Raiser {
   }
 
   const detail::HexTopology& topology() const { return topo_; }
+  //! The corner cache the sweeps' visits read and update: refreshed at the
+  //! start of a sweep (the joint untangling moves vertices without it).
+  void refresh_corners() { corner_values_ = detail::all_corner_values(mesh_); }
+  std::vector<double> qualities() const { return detail::hex_qualities(corner_values_); }
 
   double corner_value(const HexCorner& k) const { return detail::corner_determinant(mesh_, k); }
 
@@ -101,7 +105,7 @@ class Raiser {
     const double scale = scale_[v];
     if (!(scale > 0)) return 0;
     std::size_t moves = 0;
-    const detail::VertexStar st = detail::vertex_star(mesh_, topo_.vertex_hexes[v], v);
+    const detail::VertexStar st = detail::vertex_star(mesh_, topo_.vertex_hexes[v], v, 0.0, &corner_values_);
     Score current = score(st, mesh_.vertices[v], local_min(st, mesh_.vertices[v]));
     const bool slides = topo_.on_boundary[v] && !free_boundary;
     for (int it = 0; it < kMovesPerVisit; ++it) {
@@ -126,6 +130,7 @@ class Raiser {
       if (!moved) break;
       ++moves;
     }
+    if (moves > 0) detail::store_star(mesh_, st, corner_values_);
     return moves;
   }
 
@@ -259,6 +264,7 @@ class Raiser {
   std::vector<std::vector<HexCorner>> corners_;  // per vertex: the corners it affects
   std::vector<double> scale_;                 // per vertex: mean edge length at the start
   std::vector<double> allowance_;             // per boundary vertex: how far it may be off the surface (last resort)
+  std::vector<double> corner_values_;         // per hexahedron: its 8 corner determinants (see refresh_corners)
 };
 
 double min_of(const std::vector<double>& sj) { return sj.empty() ? 1.0 : *std::min_element(sj.begin(), sj.end()); }
@@ -272,11 +278,12 @@ std::size_t count_inverted(const std::vector<double>& sj) {
 template <class Select>
 int sweep(Raiser& raiser, HexMesh& mesh, double threshold, int max_sweeps, bool free_boundary, Select select,
           std::size_t& moves) {
-  double last_min = min_of(scaled_jacobians(mesh));
+  raiser.refresh_corners();
+  double last_min = min_of(raiser.qualities());
   int s = 0;
   while (s < max_sweeps) {
     ++s;
-    const std::vector<double> sj = scaled_jacobians(mesh);
+    const std::vector<double> sj = raiser.qualities();
     std::vector<double> worst(mesh.vertices.size(), 2.0);
     double deficit_before = 0;
     for (std::size_t h = 0; h < sj.size(); ++h)
@@ -295,7 +302,7 @@ int sweep(Raiser& raiser, HexMesh& mesh, double threshold, int max_sweeps, bool 
     detail::gauss_seidel_sweep(mesh, raiser.topology(), vertices,
                                [&](std::size_t v) { moved[v] = raiser.visit(v, free_boundary); });
     for (std::size_t m : moved) moves += m;
-    const std::vector<double> after = scaled_jacobians(mesh);
+    const std::vector<double> after = raiser.qualities();
     double deficit_after = 0;
     for (double q : after) deficit_after += std::max(0.0, threshold - q);
     const double now = min_of(after);
