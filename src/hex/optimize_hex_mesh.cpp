@@ -51,6 +51,13 @@ struct Optimizer {
   }
   //! After v moved: its corners' new values into the cache.
   void store(const VertexStar& st) { detail::store_star(mesh, st, corner_values); }
+  //! The worst scaled Jacobian of v's hexahedra, from the cache (== worst_at).
+  double cached_worst(std::size_t v) const {
+    double worst = 1;
+    for (int h : topo.vertex_hexes[v])
+      for (std::size_t c = 0; c < 8; ++c) worst = std::min(worst, corner_values[8 * idx(h) + c]);
+    return worst;
+  }
   //! The scaled Jacobian of every hexahedron, from the cache.
   std::vector<double> qualities() const { return detail::hex_qualities(corner_values); }
 
@@ -108,7 +115,7 @@ struct Optimizer {
         store(st);
         return;
       }
-      const double guard = std::min(floor, worst_at(st));
+      const double guard = std::min(floor, cached_worst(v));
       for (double t : {1.0, 0.5, 0.25}) {
         const Vec3 q = t == 1.0 ? target[v] : Vec3(p + t * d);
         if (worst_if(st, q) >= guard) {
@@ -132,7 +139,7 @@ struct Optimizer {
     std::vector<char> moved(mesh.vertices.size(), 0);
     detail::gauss_seidel_sweep(mesh, topo, order, [&](std::size_t v) {
       const VertexStar st = star(v);
-      const double before = worst_at(st);
+      const double before = cached_worst(v);
       const Vec3 target_point = mean_target(v);
       if (worst_if(st, target_point) >= std::min(before, kSmoothCap)) {  // no worse (ignoring changes near 1)
         mesh.vertices[v] = target_point;
