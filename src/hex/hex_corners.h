@@ -44,6 +44,7 @@ struct VertexStar {
   //! One corner that v moves: its value is e0 . (e1 x e2), edge k being
   //! fixed[k] or, for the edges at v, +-(unit edge from v to neighbour[k]).
   struct Moved {
+    Moved() {}  // no zeroing (every field a star uses is set by vertex_star)
     int neighbour[3];  // per edge: index into `neighbours` of its end other than the corner vertex (-1: fixed edge)
     double sign[3];    // +1: the corner is v, the edge leaves v; -1: the edge arrives at v
     Vec3 fixed[3];     // the fixed edges, normalised
@@ -61,22 +62,35 @@ struct VertexStar {
   mutable std::vector<double> values;       // per moved corner: its value (evaluate_star)
 };
 
-//! The star of v over `hexes`; fixed_exp only when sharpness > 0. With
-//! `corner_values` (8 per hexahedron of the mesh, up to date), the corners v
-//! does not move are read from it instead of computed.
+//! Every corner determinant and every edge's unit vector of a hexahedral
+//! mesh, kept up to date by the optimisers (store_star after each move), so
+//! that a star reads what does not change instead of computing it.
+struct CornerCache {
+  std::vector<double> values;  // 8 per hexahedron: corner determinants
+  std::vector<Vec3> units;     // 12 per hexahedron: unit vector of edge kHexEdges[e], first corner to second
+  std::vector<char> zero;      // 12 per hexahedron: that edge has zero length
+};
+
+//! The cache of `mesh` (in parallel).
+CornerCache corner_cache(const HexMesh& mesh);
+
+//! The star of v over `hexes`; fixed_exp only when sharpness > 0. With an
+//! up-to-date `cache`, what v does not move is read from it instead of
+//! computed.
 VertexStar vertex_star(const HexMesh& mesh, const std::vector<int>& hexes, std::size_t v, double sharpness = 0,
-                       const std::vector<double>* corner_values = nullptr);
+                       const CornerCache* cache = nullptr);
+//! The same into `star`, reusing its memory (a thread_local star per call
+//! site keeps the optimisers' many short visits from allocating).
+void build_vertex_star(VertexStar& star, const HexMesh& mesh, const std::vector<int>& hexes, std::size_t v,
+                       double sharpness = 0, const CornerCache* cache = nullptr);
 
-//! Writes the values of the corners v moves into `corner_values` (8 per
-//! hexahedron of the mesh) for v at its current position.
-void store_star(const HexMesh& mesh, const VertexStar& star, std::vector<double>& corner_values);
+//! Writes the corners and edges v moves into `cache`, for v at its current
+//! position.
+void store_star(const HexMesh& mesh, const VertexStar& star, CornerCache& cache);
 
-//! Every corner's determinant, 8 per hexahedron (in parallel).
-std::vector<double> all_corner_values(const HexMesh& mesh);
-
-//! Per hexahedron: its scaled Jacobian from its 8 corner values
-//! (== scaled_jacobians(mesh) when they are up to date).
-std::vector<double> hex_qualities(const std::vector<double>& corner_values);
+//! Per hexahedron: its scaled Jacobian from the cached corners
+//! (== scaled_jacobians(mesh) when the cache is up to date).
+std::vector<double> hex_qualities(const CornerCache& cache);
 
 //! Fills star.values for v at its current position in `mesh`.
 void evaluate_star(const HexMesh& mesh, const VertexStar& star);

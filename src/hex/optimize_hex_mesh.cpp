@@ -35,7 +35,7 @@ struct Optimizer {
   std::vector<char> on_surface;  // per vertex: a boundary vertex that has reached the surface
   std::vector<Vec3> origin;      // per vertex: where it was when the optimisation began
   std::vector<double> reach;     // per vertex: how far untangling may take it (its mean edge then)
-  std::vector<double> corner_values;  // per hexahedron, 8 corner determinants, kept up to date by every move
+  detail::CornerCache cache;  // corner determinants and edge units, kept up to date by every move
 
   //! Untangling may not take a vertex farther than its reach from where it
   //! began (a boundary vertex: from its target): otherwise an inverted
@@ -46,20 +46,22 @@ struct Optimizer {
   }
 
   //! With the cached energies of the fixed corners only for untangling.
-  VertexStar star(std::size_t v, bool energy = false) const {
-    return detail::vertex_star(mesh, topo.vertex_hexes[v], v, energy ? kSharpness : 0.0, &corner_values);
+  //! Fills `st`, a thread_local star of the caller (reused memory).
+  const VertexStar& star(VertexStar& st, std::size_t v, bool energy = false) const {
+    detail::build_vertex_star(st, mesh, topo.vertex_hexes[v], v, energy ? kSharpness : 0.0, &cache);
+    return st;
   }
   //! After v moved: its corners' new values into the cache.
-  void store(const VertexStar& st) { detail::store_star(mesh, st, corner_values); }
+  void store(const VertexStar& st) { detail::store_star(mesh, st, cache); }
   //! The worst scaled Jacobian of v's hexahedra, from the cache (== worst_at).
   double cached_worst(std::size_t v) const {
     double worst = 1;
     for (int h : topo.vertex_hexes[v])
-      for (std::size_t c = 0; c < 8; ++c) worst = std::min(worst, corner_values[8 * idx(h) + c]);
+      for (std::size_t c = 0; c < 8; ++c) worst = std::min(worst, cache.values[8 * idx(h) + c]);
     return worst;
   }
   //! The scaled Jacobian of every hexahedron, from the cache.
-  std::vector<double> qualities() const { return detail::hex_qualities(corner_values); }
+  std::vector<double> qualities() const { return detail::hex_qualities(cache); }
 
   //! The worst scaled Jacobian of v's hexahedra.
   double worst_at(const VertexStar& st) const {
@@ -108,7 +110,8 @@ struct Optimizer {
     detail::gauss_seidel_sweep(mesh, topo, order, [&](std::size_t v) {
       const Vec3 p = mesh.vertices[v];
       const Vec3 d = target[v] - p;
-      const VertexStar st = star(v);
+      thread_local VertexStar buffer;
+      const VertexStar& st = star(buffer, v);
       if (d.squaredNorm() <= kArrived) {
         mesh.vertices[v] = target[v];
         on_surface[v] = 1;
@@ -138,7 +141,8 @@ struct Optimizer {
       if (!topo.on_boundary[v] || on_surface[v]) order.push_back(v);
     std::vector<char> moved(mesh.vertices.size(), 0);
     detail::gauss_seidel_sweep(mesh, topo, order, [&](std::size_t v) {
-      const VertexStar st = star(v);
+      thread_local VertexStar buffer;
+      const VertexStar& st = star(buffer, v);
       const double before = cached_worst(v);
       const Vec3 target_point = mean_target(v);
       if (worst_if(st, target_point) >= std::min(before, kSmoothCap)) {  // no worse (ignoring changes near 1)
@@ -180,7 +184,8 @@ struct Optimizer {
     const double scale = edge_scale(v);
     if (!(scale > 0)) return false;
     const double h = 1e-4 * scale;
-    const VertexStar st = star(v, true);
+    thread_local VertexStar buffer;
+    const VertexStar& st = star(buffer, v, true);
     const Vec3 start_position = mesh.vertices[v];
     const double start = energy_at(st);
     double current = start;
@@ -235,7 +240,8 @@ struct Optimizer {
   bool raise_worst(std::size_t v) {
     const double scale = edge_scale(v);
     if (!(scale > 0)) return false;
-    const VertexStar st = star(v);
+    thread_local VertexStar buffer;
+    const VertexStar& st = star(buffer, v);
     double current = worst_at(st);
     const double start = current;
     for (double step = 0.2 * scale; step > 0.01 * scale; step *= 0.5) {
@@ -289,7 +295,7 @@ double min_of(const std::vector<double>& sj) { return sj.empty() ? 1.0 : *std::m
 int run_passes(Optimizer& opt, const OptimizeHexMeshOptions& options, double threshold, bool free_boundary,
                bool smooth) {
   HexMesh& mesh = opt.mesh;
-  opt.corner_values = detail::all_corner_values(mesh);
+  opt.cache = detail::corner_cache(mesh);
   double best = min_of(opt.qualities());
   double best_remaining = free_boundary ? 0.0 : opt.remaining();
   int since_progress = 0, pass = 0;
@@ -354,7 +360,7 @@ OptimizeHexMeshReport detail::optimize_hex_mesh(HexMesh& mesh, const SurfaceProj
         opt.target[v] = options.targets ? (*options.targets)[v] : projector.closest_point(mesh.vertices[v]);
     }, 512);
     report.min_before = min_of(scaled_jacobians(mesh));
-    opt.corner_values = detail::all_corner_values(mesh);
+    opt.cache = detail::corner_cache(mesh);
     if (options.guard_projection) {
       opt.project_step(options.projection_floor);
     } else {  // unguarded: every boundary vertex straight to its target

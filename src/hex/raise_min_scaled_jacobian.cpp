@@ -50,8 +50,8 @@ class Raiser {
   const detail::HexTopology& topology() const { return topo_; }
   //! The corner cache the sweeps' visits read and update: refreshed at the
   //! start of a sweep (the joint untangling moves vertices without it).
-  void refresh_corners() { corner_values_ = detail::all_corner_values(mesh_); }
-  std::vector<double> qualities() const { return detail::hex_qualities(corner_values_); }
+  void refresh_corners() { cache_ = detail::corner_cache(mesh_); }
+  std::vector<double> qualities() const { return detail::hex_qualities(cache_); }
 
   double corner_value(const HexCorner& k) const { return detail::corner_determinant(mesh_, k); }
 
@@ -105,7 +105,8 @@ class Raiser {
     const double scale = scale_[v];
     if (!(scale > 0)) return 0;
     std::size_t moves = 0;
-    const detail::VertexStar st = detail::vertex_star(mesh_, topo_.vertex_hexes[v], v, 0.0, &corner_values_);
+    thread_local detail::VertexStar st;  // reused memory
+    detail::build_vertex_star(st, mesh_, topo_.vertex_hexes[v], v, 0.0, &cache_);
     Score current = score(st, mesh_.vertices[v], local_min(st, mesh_.vertices[v]));
     const bool slides = topo_.on_boundary[v] && !free_boundary;
     for (int it = 0; it < kMovesPerVisit; ++it) {
@@ -130,7 +131,7 @@ class Raiser {
       if (!moved) break;
       ++moves;
     }
-    if (moves > 0) detail::store_star(mesh_, st, corner_values_);
+    if (moves > 0) detail::store_star(mesh_, st, cache_);
     return moves;
   }
 
@@ -264,7 +265,7 @@ class Raiser {
   std::vector<std::vector<HexCorner>> corners_;  // per vertex: the corners it affects
   std::vector<double> scale_;                 // per vertex: mean edge length at the start
   std::vector<double> allowance_;             // per boundary vertex: how far it may be off the surface (last resort)
-  std::vector<double> corner_values_;         // per hexahedron: its 8 corner determinants (see refresh_corners)
+  detail::CornerCache cache_;                 // corner determinants and edge units (see refresh_corners)
 };
 
 double min_of(const std::vector<double>& sj) { return sj.empty() ? 1.0 : *std::min_element(sj.begin(), sj.end()); }

@@ -63,7 +63,7 @@ TEST(GaussSeidelSchedule, StarValuesAreTheCornerDeterminantsBitForBit) {
   HexMesh m = jittered_grid(3);
   const detail::HexTopology topo = detail::hex_topology(m);
   const std::size_t v = 1 + 4 * 1 + 16 * 2;  // interior vertex (1,1,2)
-  const std::vector<double> cache = detail::all_corner_values(m);
+  const detail::CornerCache cache = detail::corner_cache(m);
   const detail::VertexStar st = detail::vertex_star(m, topo.vertex_hexes[v], v, 10.0, &cache);
   m.vertices[v] += Vec3(0.11, -0.07, 0.05);
   detail::evaluate_star(m, st);
