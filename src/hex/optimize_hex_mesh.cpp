@@ -5,6 +5,8 @@
 #include <cmath>
 #include <string>
 
+#include "hex/gauss_seidel_schedule.h"
+#include "hex/hex_corners.h"
 #include "hex/hex_optimizers.h"
 #include "hex/hex_topology.h"
 #include "hex/surface_projector.h"
@@ -23,6 +25,8 @@ constexpr int kPatience = 10;             // passes without progress before givi
 constexpr double kArrived = 1e-12;        // squared distance at which a vertex is at its target
 constexpr double kReach = 1.0;            // untangling moves a vertex at most this many mean edges
 
+using detail::VertexStar;
+
 struct Optimizer {
   HexMesh& mesh;
   const detail::HexTopology& topo;
@@ -31,6 +35,7 @@ struct Optimizer {
   std::vector<char> on_surface;  // per vertex: a boundary vertex that has reached the surface
   std::vector<Vec3> origin;      // per vertex: where it was when the optimisation began
   std::vector<double> reach;     // per vertex: how far untangling may take it (its mean edge then)
+  detail::CornerCache cache;  // corner determinants and edge units, kept up to date by every move
 
   //! Untangling may not take a vertex farther than its reach from where it
   //! began (a boundary vertex: from its target): otherwise an inverted
@@ -40,16 +45,36 @@ struct Optimizer {
     return (q - anchor).norm() <= reach[v];
   }
 
-  double worst_at(std::size_t v) const {
+  //! With the cached energies of the fixed corners only for untangling.
+  //! Fills `st`, a thread_local star of the caller (reused memory).
+  const VertexStar& star(VertexStar& st, std::size_t v, bool energy = false) const {
+    detail::build_vertex_star(st, mesh, topo.vertex_hexes[v], v, energy ? kSharpness : 0.0, &cache);
+    return st;
+  }
+  //! After v moved: its corners' new values into the cache.
+  void store(const VertexStar& st) { detail::store_star(mesh, st, cache); }
+  //! The worst scaled Jacobian of v's hexahedra, from the cache (== worst_at).
+  double cached_worst(std::size_t v) const {
     double worst = 1;
-    for (int h : topo.vertex_hexes[v]) worst = std::min(worst, scaled_jacobian(mesh, idx(h)));
+    for (int h : topo.vertex_hexes[v])
+      for (std::size_t c = 0; c < 8; ++c) worst = std::min(worst, cache.values[8 * idx(h) + c]);
     return worst;
   }
-  double worst_if(std::size_t v, const Vec3& p) {
-    const Vec3 old = mesh.vertices[v];
-    mesh.vertices[v] = p;
-    const double q = worst_at(v);
-    mesh.vertices[v] = old;
+  //! The scaled Jacobian of every hexahedron, from the cache.
+  std::vector<double> qualities() const { return detail::hex_qualities(cache); }
+
+  //! The worst scaled Jacobian of v's hexahedra.
+  double worst_at(const VertexStar& st) const {
+    double worst = 1;
+    detail::evaluate_star(mesh, st);
+    for (std::size_t j = 0; j < st.hexes->size(); ++j) worst = std::min(worst, detail::star_hex_quality(st, j));
+    return worst;
+  }
+  double worst_if(const VertexStar& st, const Vec3& p) {
+    const Vec3 old = mesh.vertices[st.v];
+    mesh.vertices[st.v] = p;
+    const double q = worst_at(st);
+    mesh.vertices[st.v] = old;
     return q;
   }
   Vec3 mean_target(std::size_t v) const {
@@ -78,75 +103,75 @@ struct Optimizer {
   //! first keeps the worst scaled Jacobian of its hexahedra at least
   //! min(floor, its value before). Returns the number of vertices moved.
   std::size_t project_step(double floor) {
-    std::size_t moved = 0;
-    for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
-      if (!topo.on_boundary[v] || on_surface[v]) continue;
+    std::vector<std::size_t> order;
+    for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
+      if (topo.on_boundary[v] && !on_surface[v]) order.push_back(v);
+    std::vector<char> moved(mesh.vertices.size(), 0);
+    detail::gauss_seidel_sweep(mesh, topo, order, [&](std::size_t v) {
       const Vec3 p = mesh.vertices[v];
       const Vec3 d = target[v] - p;
+      thread_local VertexStar buffer;
+      const VertexStar& st = star(buffer, v);
       if (d.squaredNorm() <= kArrived) {
         mesh.vertices[v] = target[v];
         on_surface[v] = 1;
-        continue;
+        store(st);
+        return;
       }
-      const double guard = std::min(floor, worst_at(v));
+      const double guard = std::min(floor, cached_worst(v));
       for (double t : {1.0, 0.5, 0.25}) {
         const Vec3 q = t == 1.0 ? target[v] : Vec3(p + t * d);
-        if (worst_if(v, q) >= guard) {
+        if (worst_if(st, q) >= guard) {
           mesh.vertices[v] = q;
           on_surface[v] = t == 1.0;
-          ++moved;
+          moved[v] = 1;
+          store(st);
           break;
         }
       }
-    }
-    return moved;
+    });
+    return static_cast<std::size_t>(std::count(moved.begin(), moved.end(), 1));
   }
 
   //! Smart smoothing pass; returns the number of vertices moved. Boundary
   //! vertices still off the surface are left to project_step().
   std::size_t smart_smooth() {
-    std::size_t moved = 0;
-    for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
-      if (topo.on_boundary[v] && !on_surface[v]) continue;
-      const double before = worst_at(v);
+    std::vector<std::size_t> order;
+    for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
+      if (!topo.on_boundary[v] || on_surface[v]) order.push_back(v);
+    std::vector<char> moved(mesh.vertices.size(), 0);
+    detail::gauss_seidel_sweep(mesh, topo, order, [&](std::size_t v) {
+      thread_local VertexStar buffer;
+      const VertexStar& st = star(buffer, v);
+      const double before = cached_worst(v);
       const Vec3 target_point = mean_target(v);
-      if (worst_if(v, target_point) >= std::min(before, kSmoothCap)) {  // no worse (ignoring changes near 1)
+      if (worst_if(st, target_point) >= std::min(before, kSmoothCap)) {  // no worse (ignoring changes near 1)
         mesh.vertices[v] = target_point;
-        ++moved;
+        moved[v] = 1;
+        store(st);
       }
-    }
-    return moved;
+    });
+    return static_cast<std::size_t>(std::count(moved.begin(), moved.end(), 1));
   }
 
   //! Soft-min energy of the corners of v's hexahedra: sum of
   //! exp(-sharpness x corner scaled Jacobian); dominated by the worst corners
   //! but smooth, so a gradient step can trade one corner against another.
-  double energy_at(std::size_t v) const {
+  double energy_at(const VertexStar& st) const {
+    detail::evaluate_star(mesh, st);
     double e = 0;
-    for (int h : topo.vertex_hexes[v]) {
-      const Hex& hex = mesh.hexes[idx(h)];
+    for (std::size_t j = 0; j < st.hexes->size(); ++j)
       for (std::size_t i = 0; i < 8; ++i) {
-        const auto& n = kHexCornerNeighbors[i];
-        const Vec3& p = mesh.vertices[idx(hex[i])];
-        Vec3 ed[3];
-        bool degenerate = false;
-        for (std::size_t k = 0; k < 3; ++k) {
-          ed[k] = mesh.vertices[idx(hex[idx(n[k])])] - p;
-          const double len = ed[k].norm();
-          if (!(len > 0)) degenerate = true;
-          else ed[k] /= len;
-        }
-        const double alpha = degenerate ? -1.0 : ed[0].dot(ed[1].cross(ed[2]));
-        e += std::exp(-kSharpness * alpha);
+        const int c = st.slot[8 * j + i];
+        e += c >= 0 ? std::exp(-kSharpness * st.values[idx(c)]) : st.fixed_exp[8 * j + i];
       }
-    }
     return e;
   }
-  double energy_if(std::size_t v, const Vec3& p) {
-    const Vec3 old = mesh.vertices[v];
-    mesh.vertices[v] = p;
-    const double e = energy_at(v);
-    mesh.vertices[v] = old;
+  double energy_if(const VertexStar& st, const Vec3& p) {
+    const Vec3 old = mesh.vertices[st.v];
+    mesh.vertices[st.v] = p;
+    const double e = energy_at(st);
+    mesh.vertices[st.v] = old;
     return e;
   }
 
@@ -159,7 +184,10 @@ struct Optimizer {
     const double scale = edge_scale(v);
     if (!(scale > 0)) return false;
     const double h = 1e-4 * scale;
-    const double start = energy_at(v);
+    thread_local VertexStar buffer;
+    const VertexStar& st = star(buffer, v, true);
+    const Vec3 start_position = mesh.vertices[v];
+    const double start = energy_at(st);
     double current = start;
     for (int iter = 0; iter < 4; ++iter) {
       const Vec3 p = mesh.vertices[v];
@@ -167,7 +195,7 @@ struct Optimizer {
       for (int k = 0; k < 3; ++k) {
         Vec3 d = Vec3::Zero();
         d[k] = h;
-        grad[k] = (energy_if(v, p + d) - energy_if(v, p - d)) / (2 * h);
+        grad[k] = (energy_if(st, p + d) - energy_if(st, p - d)) / (2 * h);
       }
       if (constrained) {
         Vec3 normal;
@@ -185,7 +213,7 @@ struct Optimizer {
         // a boundary vertex set free stays within a quarter edge of the surface
         else if (topo.on_boundary[v] && (surface.closest_point(q) - q).norm() > 0.25 * scale) continue;
         if (!within_reach(v, q)) continue;
-        const double e = energy_if(v, q);
+        const double e = energy_if(st, q);
         if (e < current) {
           mesh.vertices[v] = q;
           current = e;
@@ -195,6 +223,7 @@ struct Optimizer {
       }
       if (!moved) break;
     }
+    if (mesh.vertices[v] != start_position) store(st);
     const bool improved = current < start * (1 - 1e-9);
     if (improved && topo.on_boundary[v] && !constrained) {  // it left or slid off the surface
       on_surface[v] = 0;
@@ -211,7 +240,9 @@ struct Optimizer {
   bool raise_worst(std::size_t v) {
     const double scale = edge_scale(v);
     if (!(scale > 0)) return false;
-    double current = worst_at(v);
+    thread_local VertexStar buffer;
+    const VertexStar& st = star(buffer, v);
+    double current = worst_at(st);
     const double start = current;
     for (double step = 0.2 * scale; step > 0.01 * scale; step *= 0.5) {
       bool moved = true;
@@ -225,7 +256,7 @@ struct Optimizer {
           // a boundary vertex stays within a quarter edge of the surface
           if (topo.on_boundary[v] && (surface.closest_point(q) - q).norm() > 0.25 * scale) continue;
           if (!within_reach(v, q)) continue;
-          const double w = worst_if(v, q);
+          const double w = worst_if(st, q);
           if (w > current + 1e-6) {
             mesh.vertices[v] = q;
             current = w;
@@ -234,6 +265,7 @@ struct Optimizer {
         }
       }
     }
+    if (current > start) store(st);
     if (current > start && topo.on_boundary[v]) {
       on_surface[v] = 0;
       target[v] = surface.closest_point(mesh.vertices[v]);
@@ -263,28 +295,31 @@ double min_of(const std::vector<double>& sj) { return sj.empty() ? 1.0 : *std::m
 int run_passes(Optimizer& opt, const OptimizeHexMeshOptions& options, double threshold, bool free_boundary,
                bool smooth) {
   HexMesh& mesh = opt.mesh;
-  double best = min_of(scaled_jacobians(mesh));
+  opt.cache = detail::corner_cache(mesh);
+  double best = min_of(opt.qualities());
   double best_remaining = free_boundary ? 0.0 : opt.remaining();
   int since_progress = 0, pass = 0;
   while (pass < options.passes) {
     ++pass;
     if (!free_boundary) opt.project_step(options.projection_floor);
     if (smooth) opt.smart_smooth();
-    const auto sj = scaled_jacobians(mesh);
+    const auto sj = opt.qualities();
     std::vector<char> bad(mesh.vertices.size(), 0);
     for (std::size_t h = 0; h < sj.size(); ++h)
       if (sj[h] < threshold)
         for (int v : mesh.hexes[h]) bad[idx(v)] = 1;
+    std::vector<std::size_t> order;
     for (std::size_t v = 0; v < bad.size(); ++v)
-      if (bad[v]) {
-        opt.untangle_vertex(v, free_boundary);
-        if (free_boundary) opt.raise_worst(v);
-      }
+      if (bad[v]) order.push_back(v);
+    detail::gauss_seidel_sweep(mesh, opt.topo, order, [&](std::size_t v) {
+      opt.untangle_vertex(v, free_boundary);
+      if (free_boundary) opt.raise_worst(v);
+    });
     if (options.progress && !free_boundary)
       options.progress->update(static_cast<std::size_t>(pass), static_cast<std::size_t>(options.passes));
     // stop when done, or when neither the worst element nor the distance
     // left to the surface has improved for kPatience passes
-    const double worst_now = min_of(scaled_jacobians(mesh));
+    const double worst_now = min_of(opt.qualities());
     const double left = free_boundary ? 0.0 : opt.remaining();
     if (worst_now >= threshold && left == 0) break;
     if (worst_now > best + kProgress || left < (1 - 1e-2) * best_remaining) {
@@ -309,7 +344,7 @@ OptimizeHexMeshReport detail::optimize_hex_mesh(HexMesh& mesh, const SurfaceProj
                                                 const OptimizeHexMeshOptions& options) {
   OptimizeHexMeshReport report;
   const detail::HexTopology topo = detail::hex_topology(mesh);
-  Optimizer opt{mesh, topo, projector, {}, {}, {}, {}};
+  Optimizer opt{mesh, topo, projector, {}, {}, {}, {}, {}};
   opt.target.assign(mesh.vertices.size(), Vec3::Zero());
   opt.on_surface.assign(mesh.vertices.size(), 0);
   opt.origin = mesh.vertices;
@@ -325,6 +360,7 @@ OptimizeHexMeshReport detail::optimize_hex_mesh(HexMesh& mesh, const SurfaceProj
         opt.target[v] = options.targets ? (*options.targets)[v] : projector.closest_point(mesh.vertices[v]);
     }, 512);
     report.min_before = min_of(scaled_jacobians(mesh));
+    opt.cache = detail::corner_cache(mesh);
     if (options.guard_projection) {
       opt.project_step(options.projection_floor);
     } else {  // unguarded: every boundary vertex straight to its target

@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "hex/gauss_seidel_schedule.h"
 #include "hex/hex_corners.h"
 #include "hex/hex_optimizers.h"
 #include "hex/hex_topology.h"
@@ -47,27 +48,32 @@ class Raiser {
   }
 
   const detail::HexTopology& topology() const { return topo_; }
+  //! The corner cache the sweeps' visits read and update: refreshed at the
+  //! start of a sweep (the joint untangling moves vertices without it).
+  void refresh_corners() { cache_ = detail::corner_cache(mesh_); }
+  std::vector<double> qualities() const { return detail::hex_qualities(cache_); }
 
   double corner_value(const HexCorner& k) const { return detail::corner_determinant(mesh_, k); }
 
   //! Smallest corner v affects, with v at p.
-  double local_min(std::size_t v, const Vec3& p) {
-    const Vec3 old = mesh_.vertices[v];
-    mesh_.vertices[v] = p;
-    double m = 1.0;
-    for (const HexCorner& k : corners_[v]) m = std::min(m, corner_value(k));
-    mesh_.vertices[v] = old;
+  double local_min(const detail::VertexStar& st, const Vec3& p) {
+    const Vec3 old = mesh_.vertices[st.v];
+    mesh_.vertices[st.v] = p;
+    detail::evaluate_star(mesh_, st);
+    const double m = detail::star_min_moved(st);
+    mesh_.vertices[st.v] = old;
     return m;
   }
-  double soft_energy(std::size_t v, const Vec3& p, double shift) {
-    const Vec3 old = mesh_.vertices[v];
-    mesh_.vertices[v] = p;
+  double soft_energy(const detail::VertexStar& st, const Vec3& p, double shift) {
+    const Vec3 old = mesh_.vertices[st.v];
+    mesh_.vertices[st.v] = p;
+    detail::evaluate_star(mesh_, st);
     double e = 0;
-    for (int h : topo_.vertex_hexes[v]) {
-      const double q = scaled_jacobian(mesh_, idx(h));
+    for (std::size_t j = 0; j < st.hexes->size(); ++j) {
+      const double q = detail::star_hex_quality(st, j);
       e += std::exp(-kSharpness * (q - shift)) - kLinear * q;
     }
-    mesh_.vertices[v] = old;
+    mesh_.vertices[st.v] = old;
     return e;
   }
 
@@ -99,18 +105,20 @@ class Raiser {
     const double scale = scale_[v];
     if (!(scale > 0)) return 0;
     std::size_t moves = 0;
-    Score current = score(v, mesh_.vertices[v], local_min(v, mesh_.vertices[v]));
+    thread_local detail::VertexStar st;  // reused memory
+    detail::build_vertex_star(st, mesh_, topo_.vertex_hexes[v], v, 0.0, &cache_);
+    Score current = score(st, mesh_.vertices[v], local_min(st, mesh_.vertices[v]));
     const bool slides = topo_.on_boundary[v] && !free_boundary;
     for (int it = 0; it < kMovesPerVisit; ++it) {
       const Vec3 p = mesh_.vertices[v];
       const double shift = current.min;
-      current = score(v, p, shift);
+      current = score(st, p, shift);
       const double h = 1e-5 * scale;
       Vec3 grad;
       for (int a = 0; a < 3; ++a) {
         Vec3 d = Vec3::Zero();
         d[a] = h;
-        grad[a] = (soft_energy(v, p + d, shift) - soft_energy(v, p - d, shift)) / (2 * h);
+        grad[a] = (soft_energy(st, p + d, shift) - soft_energy(st, p - d, shift)) / (2 * h);
       }
       if (slides) {
         Vec3 normal;
@@ -118,11 +126,12 @@ class Raiser {
         grad -= grad.dot(normal) * normal;
       }
       bool moved = false;
-      if (const double g = grad.norm(); g > 0) moved = line_search(v, -grad / g, scale, free_boundary, shift, current);
-      if (!moved && current.min < kPatternBelow) moved = pattern_search(v, scale, free_boundary, shift, current);
+      if (const double g = grad.norm(); g > 0) moved = line_search(st, -grad / g, scale, free_boundary, shift, current);
+      if (!moved && current.min < kPatternBelow) moved = pattern_search(st, scale, free_boundary, shift, current);
       if (!moved) break;
       ++moves;
     }
+    if (moves > 0) detail::store_star(mesh_, st, cache_);
     return moves;
   }
 
@@ -200,44 +209,47 @@ class Raiser {
     double min;     // smallest affected corner
     double energy;  // soft-min energy of the affected corners
   };
-  Score score(std::size_t v, const Vec3& p, double shift) {
-    return {local_min(v, p), soft_energy(v, p, shift)};
+  Score score(const detail::VertexStar& st, const Vec3& p, double shift) {
+    return {local_min(st, p), soft_energy(st, p, shift)};
   }
   //! Moves v to (the placement of) q if that raises its smallest corner, or,
   //! with `smooth`, lowers the soft-min energy without lowering it.
-  bool try_move(std::size_t v, const Vec3& q, bool free_boundary, double shift, bool smooth, Score& current) {
+  bool try_move(const detail::VertexStar& st, const Vec3& q, bool free_boundary, double shift, bool smooth,
+                Score& current) {
+    const std::size_t v = st.v;
     Vec3 to;
     if (!place(v, q, free_boundary, to)) return false;
-    const double m = local_min(v, to);
+    const double m = local_min(st, to);
     if (m < current.min) return false;
     double e = current.energy;
     if (smooth) {  // lower the energy, keeping the smallest corner
-      e = soft_energy(v, to, shift);
+      e = soft_energy(st, to, shift);
       if (!(e < current.energy - 1e-12 * std::abs(current.energy))) return false;
     } else if (!(m > current.min + kGain)) {  // raise the smallest corner
       return false;
     } else {
-      e = soft_energy(v, to, shift);
+      e = soft_energy(st, to, shift);
     }
     mesh_.vertices[v] = to;
     current = {m, e};
     return true;
   }
-  bool line_search(std::size_t v, const Vec3& dir, double scale, bool free_boundary, double shift, Score& current) {
-    const Vec3 p = mesh_.vertices[v];
+  bool line_search(const detail::VertexStar& st, const Vec3& dir, double scale, bool free_boundary, double shift,
+                   Score& current) {
+    const Vec3 p = mesh_.vertices[st.v];
     double step = 0.25 * scale;
     for (int k = 0; k < 14; ++k, step *= 0.5)
-      if (try_move(v, p + step * dir, free_boundary, shift, true, current)) return true;
+      if (try_move(st, p + step * dir, free_boundary, shift, true, current)) return true;
     return false;
   }
-  bool pattern_search(std::size_t v, double scale, bool free_boundary, double shift, Score& current) {
-    const Vec3 p = mesh_.vertices[v];
+  bool pattern_search(const detail::VertexStar& st, double scale, bool free_boundary, double shift, Score& current) {
+    const Vec3 p = mesh_.vertices[st.v];
     for (double step = 0.1 * scale; step > 1e-4 * scale; step *= 0.25)
       for (int d = 0; d < 14; ++d) {
         Vec3 dir = Vec3::Zero();
         if (d < 6) dir[d / 2] = d % 2 ? -1.0 : 1.0;
         else dir = Vec3((d - 6) & 1 ? -1.0 : 1.0, (d - 6) & 2 ? -1.0 : 1.0, (d - 6) & 4 ? -1.0 : 1.0) / std::sqrt(3.0);
-        if (try_move(v, p + step * dir, free_boundary, shift, false, current)) return true;
+        if (try_move(st, p + step * dir, free_boundary, shift, false, current)) return true;
       }
     return false;
   }
@@ -253,6 +265,7 @@ class Raiser {
   std::vector<std::vector<HexCorner>> corners_;  // per vertex: the corners it affects
   std::vector<double> scale_;                 // per vertex: mean edge length at the start
   std::vector<double> allowance_;             // per boundary vertex: how far it may be off the surface (last resort)
+  detail::CornerCache cache_;                 // corner determinants and edge units (see refresh_corners)
 };
 
 double min_of(const std::vector<double>& sj) { return sj.empty() ? 1.0 : *std::min_element(sj.begin(), sj.end()); }
@@ -266,11 +279,12 @@ std::size_t count_inverted(const std::vector<double>& sj) {
 template <class Select>
 int sweep(Raiser& raiser, HexMesh& mesh, double threshold, int max_sweeps, bool free_boundary, Select select,
           std::size_t& moves) {
-  double last_min = min_of(scaled_jacobians(mesh));
+  raiser.refresh_corners();
+  double last_min = min_of(raiser.qualities());
   int s = 0;
   while (s < max_sweeps) {
     ++s;
-    const std::vector<double> sj = scaled_jacobians(mesh);
+    const std::vector<double> sj = raiser.qualities();
     std::vector<double> worst(mesh.vertices.size(), 2.0);
     double deficit_before = 0;
     for (std::size_t h = 0; h < sj.size(); ++h)
@@ -283,8 +297,13 @@ int sweep(Raiser& raiser, HexMesh& mesh, double threshold, int max_sweeps, bool 
       if (worst[v] < 2.0) order.emplace_back(worst[v], v);
     if (order.empty()) break;
     std::sort(order.begin(), order.end());
-    for (const auto& [q, v] : order) moves += raiser.visit(v, free_boundary);
-    const std::vector<double> after = scaled_jacobians(mesh);
+    std::vector<std::size_t> vertices(order.size());
+    for (std::size_t i = 0; i < order.size(); ++i) vertices[i] = order[i].second;
+    std::vector<std::size_t> moved(mesh.vertices.size(), 0);
+    detail::gauss_seidel_sweep(mesh, raiser.topology(), vertices,
+                               [&](std::size_t v) { moved[v] = raiser.visit(v, free_boundary); });
+    for (std::size_t m : moved) moves += m;
+    const std::vector<double> after = raiser.qualities();
     double deficit_after = 0;
     for (double q : after) deficit_after += std::max(0.0, threshold - q);
     const double now = min_of(after);

@@ -24,7 +24,9 @@
 //! or after `passes`. Then, for elements still under 0.02, a last resort lets
 //! their boundary vertices leave the surface (by at most a quarter edge) and
 //! raises the worst element by a pattern search; kept only if it helped.
-//! Serial Gauss-Seidel sweeps in vertex order: deterministic.
+//! Gauss-Seidel sweeps in vertex order, run in parallel waves that give the
+//! serial sweep's result bit for bit (src/hex/gauss_seidel_schedule.h):
+//! deterministic whatever the number of threads.
 #pragma once
 
 #include <cstddef>

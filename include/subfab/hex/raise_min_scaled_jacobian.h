@@ -31,7 +31,9 @@
 //! Finally `quality_sweeps` sweeps as in 1-3 over the hexahedra under
 //! `quality_threshold`: the same moves, which cannot lower any
 //! neighbourhood's worst element, raise the average (cactus .828 -> .875).
-//! Serial Gauss-Seidel in a fixed order: deterministic.
+//! Gauss-Seidel in a fixed order, run in parallel waves with the serial
+//! result (src/hex/gauss_seidel_schedule.h): deterministic whatever the number
+//! of threads.
 #pragma once
 
 #include <cstddef>
