@@ -55,7 +55,7 @@ nlohmann::ordered_json to_json(const HexmeshArgs& args, const Mesh& input, const
   {  // D.5: the cones found and used, the integer programme
     const ResolutionPlan& p = r.resolution;
     nlohmann::ordered_json rc;
-    rc["enabled"] = args.scaling;
+    rc["enabled"] = !args.no_scaling;
     rc["cones_found"] = r.cones_found.size();
     rc["cones_used"] = p.layers.size();
     nlohmann::ordered_json cones = nlohmann::ordered_json::array();
@@ -131,7 +131,7 @@ int run_hexmesh(const HexmeshArgs& args) {
   HexMeshOptions options;
   options.progress = &progress;
   options.subdivisions = args.subdivisions;
-  options.resolution_control = args.scaling && !args.no_scaling;
+  options.resolution_control = !args.no_scaling;
   options.max_hexes = args.max_hexes;
   HexMeshResult result;
   try {
@@ -199,9 +199,9 @@ void add_hexmesh_options(CLI::App& sub, HexmeshArgs& args) {
   auto* scaling = sub.add_flag("--scaling", args.scaling,
                                "Resolution control (thesis D.5): cones on terminal branches, their templates and the "
                                "integer programme of the splits (CBC), so thick parts get more hexahedra across than "
-                               "thin limbs (off by default: fewer hexahedra, but not better quality on every model)");
+                               "thin limbs (the default; the flag only says so)");
   sub.add_flag("--no-scaling", args.no_scaling,
-               "No resolution control (the default): every hexahedron is split the same number of times")
+               "No resolution control (D.5): every hexahedron is split the same number of times")
       ->excludes(scaling);
   sub.add_flag("--no-view", args.no_view,
                "Do not write OUTDIR/view.html (the cells coloured by scaled Jacobian in 3D in a browser)");

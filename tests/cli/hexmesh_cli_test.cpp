@@ -58,8 +58,9 @@ TEST(HexmeshCli, BadSkeletonFileExitsTwoWithTheLine) {
   EXPECT_NE(n.output.find("nocount.skel:2: missing node count"), std::string::npos) << n.output;
 }
 
-// --no-scaling (the default) skips resolution control (D.5), --scaling runs
-// it; on a uniform capsule there is no cone, so the mesh is the same.
+// --no-scaling skips resolution control (D.5), which runs by default
+// (--scaling says so); on a uniform capsule there is no cone, so the mesh is
+// the same.
 TEST(HexmeshCli, NoScalingSkipsResolutionControl) {
   const fs::path dir = test::temp_dir();
   const fs::path input = dir / "capsule.off";
@@ -79,6 +80,10 @@ TEST(HexmeshCli, NoScalingSkipsResolutionControl) {
   EXPECT_GT(rc.at("ilp").at("variables").get<int>(), 0);
   EXPECT_TRUE(rc.at("ilp").at("solved").get<bool>());
   EXPECT_EQ(test::slurp(dir / "on" / "hexmesh.mesh"), test::slurp(dir / "off" / "hexmesh.mesh"));
+  const auto plain = run_subfab("hexmesh " + quoted(input) + " -o " + quoted(dir / "plain") +
+                                " --subdivisions 1 --no-view --json --quiet");
+  ASSERT_EQ(plain.exit_code, 0) << plain.output;
+  EXPECT_TRUE(nlohmann::json::parse(plain.output).at("resolution_control").at("enabled").get<bool>());
   const auto both = run_subfab("hexmesh " + quoted(input) + " -o " + quoted(dir / "both") + " --scaling --no-scaling");
   EXPECT_NE(both.exit_code, 0) << both.output;
 }

@@ -55,7 +55,7 @@ struct HexMeshOptions {
   ComputeSkeletonOptions skeleton;   // when no skeleton is given
   ResampleSkeletonOptions resample;
   TubularStructureOptions tubular;
-  bool resolution_control = false;   // D.5: cones, templates and the integer programme (off: every hexahedron splits equally; see docs/hexmesh.md for why off)
+  bool resolution_control = true;    // D.5: cones, templates and the integer programme (off: every hexahedron splits equally; see docs/hexmesh.md)
   ResolutionControlOptions resolution;
   int subdivisions = -1;             // regular splits of the least split hexahedra (all of them without cones); -1: the most that keeps <= max_hexes
   std::size_t max_hexes = 20000;     // bound for the automatic choice (at least one split is always made)
