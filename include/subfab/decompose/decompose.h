@@ -45,7 +45,8 @@ struct DecomposeOptions {
                                     // thesis's exact decomposition); see merge_within_tolerance()
   double tolerance_abs = std::numeric_limits<double>::infinity();  // --tolerance-abs: model units; the smaller wins
   int tolerance_rounds = 4;         // within a tolerance: decompositions under allowances (tolerance_allowances())
-                                    // before the exact one (>= 1)
+                                    // with base floors, then as many without them (per face), before the exact
+                                    // one (or the features' allowances only) (>= 1)
   std::vector<double> tolerance_depth_fractions = {2.0, 1.0, 0.5};  // within a tolerance: a face may lean past
                                     // vertical when its undercut depth <= q x T, q first the first of these (> 0,
                                     // unitless); where a block's milled shape fails the measure, the faces in its
