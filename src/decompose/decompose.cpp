@@ -495,10 +495,20 @@ bool stages_within_tolerance(const Mesh& solid, const std::vector<std::array<dou
   last.bits = pinned.empty() ? std::vector<std::uint8_t>(solid.num_faces(), 0) : pinned;
   last.floors.assign(solid.num_faces(), {-std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
                                          -std::numeric_limits<double>::infinity()});
-  const auto count_everywhere = [](const OverhangAllowances& a) {
-    return count_allowed_faces(a.bits) - count_floored_faces(a);
+  const auto count_everywhere = [](const OverhangAllowances& a) {  // faces with an allowance in every box
+    std::size_t n = 0;
+    for (std::size_t f = 0; f < a.bits.size(); ++f)
+      for (std::size_t k = 0; k < 3; ++k)
+        if ((a.bits[f] & (1u << k)) && a.floors[f][k] == -std::numeric_limits<double>::infinity()) {
+          ++n;
+          break;
+        }
+    return n;
   };
-  result.num_floored_faces = count_floored_faces(allowed);
+  const auto count_only_floored = [&](const OverhangAllowances& a) {  // faces allowed only above base floors
+    return count_allowed_faces(a.bits) - count_everywhere(a);
+  };
+  result.num_floored_faces = count_only_floored(allowed);
   result.num_allowed_faces = count_everywhere(allowed);
   if (progress)
     progress->info(std::to_string(result.num_allowed_faces) + " of " + std::to_string(solid.num_faces()) +
@@ -551,7 +561,7 @@ bool stages_within_tolerance(const Mesh& solid, const std::vector<std::array<dou
       progress->info(std::to_string(milled.num_failed()) + " block(s) beyond the tolerance (" + first + "); " +
                      change + "; decomposing again with " + std::to_string(count_everywhere(allowed)) +
                      " faces allowed" +
-                     (floor_scale > 0 ? " (" + std::to_string(count_floored_faces(allowed)) + " more above base floors)"
+                     (floor_scale > 0 ? " (" + std::to_string(count_only_floored(allowed)) + " more above base floors)"
                                       : std::string()));
     }
   }
