@@ -339,6 +339,7 @@ TEST(ToleranceAllowances, AFeatureWhoseBlocksFailTheMeasureIsRepairedAfterAll) {
   o.tolerance_fraction = 1e-3;
   o.tolerance_rounds = 1;
   o.tolerance_depth_fractions = {100.0};
+  o.tolerance_floor_scale = 0;  // per face: one allowances' round, then the pinned one (floors would add rounds)
   const DecomposeResult t = decompose(spiked, o);
   EXPECT_EQ(t.num_features_within_tolerance, 0u);
   EXPECT_TRUE(t.repaired_input.has_value());
