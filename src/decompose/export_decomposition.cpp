@@ -172,6 +172,8 @@ std::string decomposition_json(const Mesh& input, const DecomposeResult& result,
                        {"max_overhang_deg", result.max_overhang_deg},
                        {"tolerance", result.tolerance},
                        {"tolerance_fraction", diagonal > 0 ? result.tolerance / diagonal : 0.0}};
+  if (result.tolerance > 0)  // within a tolerance only: the exact output stays as it was
+    doc["parameters"]["tolerance_floor_scale"] = o.tolerance_floor_scale;
   Json list = Json::array();
   double total = 0.0, smallest = std::numeric_limits<double>::infinity(), steepest = 0.0;
   double thinnest = std::numeric_limits<double>::infinity();
