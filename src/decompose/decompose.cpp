@@ -5,7 +5,6 @@
 #include <array>
 #include <chrono>
 #include <cstdint>
-#include <limits>
 #include <numeric>
 #include <cmath>
 #include <sstream>
@@ -17,7 +16,6 @@
 #include "subfab/checks/require_closed_solid.h"
 #include "decompose/block_pairs_detail.h"
 #include "decompose/box_pieces.h"
-#include "geometry/exact_normal_signs.h"
 #include "geometry/solid_index.h"
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
@@ -274,74 +272,37 @@ std::vector<Block> carve_stages(const Mesh& solid, const OverhangAllowances* all
   return std::move(carved.blocks);
 }
 
-//! What lower_allowances() changed, in faces.
-struct AllowanceChanges {
-  std::size_t floors_dropped = 0;  // faces that lost a base floor (their allowance in the boxes above it)
-  std::size_t faces_lowered = 0;   // faces whose per-face allowance stepped down a level
-};
-
-//! The allowances of every block that failed the measure, taken back step
-//! by step (issue 17). The candidates are the faces allowed for the block's
-//! axis whose bounding box meets the block's, except the pinned ones
-//! (`pinned`, per face, may be empty: the allowances a thin feature needs,
-//! see pinned_allowances()). When some of them lean on a base floor in the
-//! block (a finite floor at or below its base, facing away from its
-//! direction), only those lose their floor (floor_axes bit cleared): floors
-//! go first, the per-face allowances stay. Otherwise the per-face ones
-//! (floor -inf) step down one level (a smaller depth fraction, then none).
-//! Without floors (all -inf) this is the per-face rule alone.
-AllowanceChanges lower_allowances(const Mesh& solid, const MillToleranceResult& milled,
-                                  const OverhangAllowances& allowed, const std::vector<std::uint8_t>& pinned,
-                                  std::vector<std::array<std::uint8_t, 3>>& level,
-                                  std::vector<std::uint8_t>& floor_axes) {
-  constexpr double inf = std::numeric_limits<double>::infinity();
+//! Lowers by one level (a smaller depth fraction, then none) the
+//! allowances for the axis of every failed block, on the faces allowed for
+//! it whose bounding box meets the block's (a block fails where the
+//! material left under its allowed faces is too deep or collides), except
+//! the pinned ones (`pinned`, per face, may be empty: the allowances a thin
+//! feature needs, see pinned_allowances()). Returns the number of
+//! allowances lowered.
+std::size_t lower_allowances(const Mesh& solid, const MillToleranceResult& milled, const std::vector<std::uint8_t>& allowed,
+                             const std::vector<std::uint8_t>& pinned, std::vector<std::array<std::uint8_t, 3>>& level) {
   std::vector<BoundingBox> face_boxes(solid.num_faces());
   for (std::size_t f = 0; f < solid.num_faces(); ++f)
     for (int v : solid.faces[f]) face_boxes[f].extend(solid.vertices[static_cast<std::size_t>(v)]);
-  const bool any_floor = count_floored_faces(allowed) > 0;
-  const auto signs = any_floor ? detail::exact_normal_signs(solid) : std::vector<std::array<std::int8_t, 3>>{};
-  std::vector<std::uint8_t> lower(solid.num_faces(), 0), drop(solid.num_faces(), 0);  // bit k per face
-  std::vector<std::size_t> candidates;
+  std::vector<std::array<std::uint8_t, 3>> lower(solid.num_faces(), {0, 0, 0});
   for (std::size_t i = 0; i < milled.blocks.size(); ++i) {
     if (milled.failures[i].empty()) continue;
-    const Mesh& block = milled.blocks[i].mesh;
-    const BoundingBox box = bounding_box(block);
+    const BoundingBox box = bounding_box(milled.blocks[i].mesh);
     const int k = axis_dimension(milled.blocks[i].axis);
-    const auto ku = static_cast<std::size_t>(k);
-    const Vec3 d = axis_direction(milled.blocks[i].axis);
     const auto bit = static_cast<std::uint8_t>(1u << k);
-    double base = inf;  // min of x.d over the block
-    for (const Vec3& v : block.vertices) base = std::min(base, v.dot(d));
-    candidates.clear();
-    bool leans_on_floor = false;
     for (std::size_t f = 0; f < solid.num_faces(); ++f) {
-      if (!(allowed.bits[f] & bit) || (!pinned.empty() && (pinned[f] & bit)) ||
-          !detail::boxes_touch(face_boxes[f], box))
-        continue;
-      candidates.push_back(f);
-      const double fl = allowed.floors[f][ku];
-      if (std::isfinite(fl) && signs[f][ku] == -static_cast<int>(d[k]) && fl <= base) {
-        drop[f] = static_cast<std::uint8_t>(drop[f] | bit);
-        leans_on_floor = true;
+      if ((allowed[f] & bit) && !(!pinned.empty() && (pinned[f] & bit)) && detail::boxes_touch(face_boxes[f], box))
+        lower[f][static_cast<std::size_t>(k)] = 1;
+    }
+  }
+  std::size_t lowered = 0;
+  for (std::size_t f = 0; f < solid.num_faces(); ++f)
+    for (std::size_t k = 0; k < 3; ++k)
+      if (lower[f][k]) {
+        ++level[f][k];
+        ++lowered;
       }
-    }
-    if (leans_on_floor) continue;
-    for (std::size_t f : candidates)
-      if (allowed.floors[f][ku] == -inf) lower[f] = static_cast<std::uint8_t>(lower[f] | bit);
-  }
-  AllowanceChanges changes;
-  for (std::size_t f = 0; f < solid.num_faces(); ++f) {
-    if (drop[f]) {
-      floor_axes[f] = static_cast<std::uint8_t>(floor_axes[f] & ~drop[f]);
-      ++changes.floors_dropped;
-    }
-    if (lower[f]) {
-      for (std::size_t k = 0; k < 3; ++k)
-        if (lower[f] & (1u << k)) ++level[f][k];
-      ++changes.faces_lowered;
-    }
-  }
-  return changes;
+  return lowered;
 }
 
 //! Stage 7 of decompose(): exact merges of touching blocks (4.3.4
@@ -468,12 +429,7 @@ MillToleranceResult mill_stage(const Mesh& solid, std::vector<Block> blocks, con
 //! Stages 2-6 of decompose() within a tolerance (issue 17) on `solid`:
 //! under the allowances of the faces whose undercut is within it, then
 //! every block replaced by its milled shape and measured; where one fails,
-//! its allowances are taken back (lower_allowances(): the base floors of
-//! the faces leaning on them in the block first, else the per-face ones one
-//! level down) and the stages run again. The fallback chain: with base
-//! floors (options.tolerance_floor_scale > 0), at most tolerance_rounds
-//! rounds; then the floors are dropped (the per-face allowances at their
-//! levels as they stand) for at most tolerance_rounds more; then one round
+//! its allowances are lowered and the stages run again, the last round
 //! under the pinned allowances only (`pinned`: those a thin feature needs;
 //! empty or all zero: none, the exact path). Sets `blocks` and `filled`.
 //! Returns false when the blocks still fail the measure under the pinned
@@ -485,40 +441,26 @@ bool stages_within_tolerance(const Mesh& solid, const std::vector<std::array<dou
   Progress* progress = options.progress;
   const std::vector<double>& fractions = options.tolerance_depth_fractions;
   std::vector<std::array<std::uint8_t, 3>> level(solid.num_faces(), {0, 0, 0});
-  double floor_scale = options.tolerance_floor_scale;  // 0 once the floors are dropped
-  std::vector<std::uint8_t> floor_axes(solid.num_faces(), 7);  // per face: the axes a floor may still hold for
-  const auto allowances = [&] {
-    return allowances_with_floors(solid, depths, level, fractions, result.tolerance, floor_scale, floor_axes);
-  };
-  OverhangAllowances allowed = allowances();
+  const double floor_scale = options.tolerance_floor_scale;
+  const bool with_floors = floor_scale > 0;
+  OverhangAllowances allowed = allowances_with_floors(solid, depths, level, fractions, result.tolerance, floor_scale);
   OverhangAllowances last;
   last.bits = pinned.empty() ? std::vector<std::uint8_t>(solid.num_faces(), 0) : pinned;
   last.floors.assign(solid.num_faces(), {-std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
                                          -std::numeric_limits<double>::infinity()});
-  const auto count_everywhere = [](const OverhangAllowances& a) {  // faces with an allowance in every box
-    std::size_t n = 0;
-    for (std::size_t f = 0; f < a.bits.size(); ++f)
-      for (std::size_t k = 0; k < 3; ++k)
-        if ((a.bits[f] & (1u << k)) && a.floors[f][k] == -std::numeric_limits<double>::infinity()) {
-          ++n;
-          break;
-        }
-    return n;
+  const auto count_everywhere = [](const OverhangAllowances& a) {
+    return count_allowed_faces(a.bits) - count_floored_faces(a);
   };
-  const auto count_only_floored = [&](const OverhangAllowances& a) {  // faces allowed only above base floors
-    return count_allowed_faces(a.bits) - count_everywhere(a);
-  };
-  result.num_floored_faces = count_only_floored(allowed);
+  result.num_floored_faces = count_floored_faces(allowed);
   result.num_allowed_faces = count_everywhere(allowed);
   if (progress)
     progress->info(std::to_string(result.num_allowed_faces) + " of " + std::to_string(solid.num_faces()) +
                    " faces may lean past vertical (undercut within " + std::to_string(fractions.front()) +
                    " x the tolerance)" +
-                   (floor_scale > 0 ? ", " + std::to_string(result.num_floored_faces) +
-                                          " more in boxes whose base lies close enough under them"
-                                    : std::string()));
-  int phase_rounds = 0;  // failed rounds since the floors were dropped (or since the start)
-  for (;;) {
+                   (with_floors ? ", " + std::to_string(result.num_floored_faces) +
+                                      " more in boxes whose base lies close enough under them"
+                                : std::string()));
+  for (int round = 0;; ++round) {
     const std::size_t num_allowed = count_allowed_faces(allowed.bits);
     blocks = carve_stages(solid, num_allowed > 0 ? &allowed : nullptr, input, options, result);
     if (num_allowed == 0) return true;
@@ -531,38 +473,23 @@ bool stages_within_tolerance(const Mesh& solid, const std::vector<std::array<dou
       return true;
     }
     if (allowed == last) return false;  // nothing left to lower
-    ++phase_rounds;
-    const OverhangAllowances previous = allowed;
-    std::string change;
-    if (phase_rounds < options.tolerance_rounds) {
-      const AllowanceChanges c = lower_allowances(solid, milled, allowed, pinned, level, floor_axes);
-      allowed = allowances();
-      if (c.floors_dropped > 0) change = std::to_string(c.floors_dropped) + " faces lose their base floors";
-      if (c.faces_lowered > 0)
-        change += (change.empty() ? "" : ", ") + std::to_string(c.faces_lowered) + " faces' allowances step down";
-    }
-    if (allowed == previous && floor_scale > 0) {
-      // The floored rounds ran out (or the failing blocks hold pinned
-      // allowances only): the per-face allowances, at their levels.
-      floor_scale = 0;
-      phase_rounds = 0;
-      allowed = allowances();
-      change = "base floors dropped (" + std::to_string(count_floored_faces(previous)) + " faces lose them)";
-    }
-    if (allowed == previous) {
-      allowed = last;  // the rounds ran out, or the failing blocks meet pinned allowances only
-      change = std::string(count_allowed_faces(last.bits) > 0 ? "only the features' allowances kept"
-                                                               : "no allowance kept (the exact path)");
+    const std::size_t before = num_allowed;
+    if (round + 1 >= options.tolerance_rounds) {
+      allowed = last;
+    } else {
+      const OverhangAllowances previous = allowed;
+      lower_allowances(solid, milled, allowed.bits, pinned, level);
+      allowed = allowances_with_floors(solid, depths, level, fractions, result.tolerance, floor_scale);
+      if (allowed == previous) allowed = last;  // the failing blocks meet pinned allowances only
     }
     if (progress) {
       std::string first;
       for (std::size_t i = 0; i < milled.failures.size() && first.empty(); ++i)
         if (!milled.failures[i].empty()) first = "block " + std::to_string(i + 1) + ": " + milled.failures[i];
       progress->info(std::to_string(milled.num_failed()) + " block(s) beyond the tolerance (" + first + "); " +
-                     change + "; decomposing again with " + std::to_string(count_everywhere(allowed)) +
-                     " faces allowed" +
-                     (floor_scale > 0 ? " (" + std::to_string(count_only_floored(allowed)) + " more above base floors)"
-                                      : std::string()));
+                     std::to_string(before - count_allowed_faces(allowed.bits)) +
+                     " faces lose allowances, decomposing again with " + std::to_string(count_everywhere(allowed)) +
+                     " faces allowed (" + std::to_string(count_floored_faces(allowed)) + " more above base floors)");
     }
   }
 }

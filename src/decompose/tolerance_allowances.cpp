@@ -77,12 +77,9 @@ std::vector<std::uint8_t> tolerance_allowances(const Mesh& mesh, const Tolerance
 
 OverhangAllowances allowances_with_floors(const Mesh& mesh, const std::vector<std::array<double, 3>>& depths,
                                           const std::vector<std::array<std::uint8_t, 3>>& level,
-                                          const std::vector<double>& fractions, double tolerance, double floor_scale,
-                                          const std::vector<std::uint8_t>& floor_axes) {
+                                          const std::vector<double>& fractions, double tolerance, double floor_scale) {
   if (depths.size() != mesh.num_faces())
     throw InvalidArgumentError("allowances_with_floors: one depth per face expected");
-  if (!floor_axes.empty() && floor_axes.size() != mesh.num_faces())
-    throw InvalidArgumentError("allowances_with_floors: floor_axes needs one entry per face (or none)");
   constexpr double inf = std::numeric_limits<double>::infinity();
   OverhangAllowances a;
   a.bits = allowances_at(depths, level, fractions, tolerance);
@@ -94,7 +91,6 @@ OverhangAllowances allowances_with_floors(const Mesh& mesh, const std::vector<st
     for (std::size_t k = 0; k < 3; ++k) {
       const auto bit = static_cast<std::uint8_t>(1u << k);
       if ((a.bits[f] & bit) || level[f][k] >= fractions.size() || signs[f][k] == 0) continue;
-      if (!floor_axes.empty() && !(floor_axes[f] & bit)) continue;
       const double cosine = std::abs(n[static_cast<int>(k)]);
       if (!(cosine > 0)) continue;
       // d = -s e_k: v.d = -s v_k.

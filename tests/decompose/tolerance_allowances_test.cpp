@@ -227,60 +227,6 @@ TEST(ToleranceAllowances, ABaseFloorLetsABlockWhoseBaseLiesJustUnderAShallowOver
 }
 
 
-//! A 10 x 10 plate (z in [0, 6]) with a groove 1 deep round its sides at z
-//! in [2, 4] (undercut 2: within 2 T at T = 1.2, its fill 1 deep), a 4 x 4
-//! core (z in [6, 13]), a 10 x 10 slab (z in [13, 17]) whose rim hangs 2
-//! lower (a lip, z in [11, 13]) and a knob on top (z in [17, 18]). Under the
-//! slab the ceiling's undercut is 7 deep: per face it may never lean; base
-//! floors far enough down let one +z block hold everything, filling the ring
-//! under the ceiling 2 to 3 deep.
-std::set<test::Cell> grooved_lipped_cells() {
-  std::set<test::Cell> cells;
-  for (const auto& c : test::cells_of_box({0, 0, 0}, {10, 10, 6}))
-    if (!((c[2] == 2 || c[2] == 3) && (c[0] == 0 || c[0] == 9 || c[1] == 0 || c[1] == 9))) cells.insert(c);
-  for (const auto& c : test::cells_of_box({3, 3, 6}, {7, 7, 13})) cells.insert(c);
-  for (const auto& c : test::cells_of_box({0, 0, 13}, {10, 10, 17})) cells.insert(c);
-  for (const auto& c : test::cells_of_box({0, 0, 11}, {10, 10, 13}))
-    if (c[0] == 0 || c[0] == 9 || c[1] == 0 || c[1] == 9) cells.insert(c);
-  for (const auto& c : test::cells_of_box({4, 4, 17}, {6, 6, 18})) cells.insert(c);
-  return cells;
-}
-
-TEST(ToleranceAllowances, WhenTheFlooredRoundsFailThePerFaceAllowancesAreKeptNotTheExactBlocks) {
-  // Exactly 4 blocks; per face (T = 1.2) the groove is filled: 2 blocks, in
-  // one round. With floors at S = 6 (floor 2 x 1.2 x 6 = 14.4 under a face)
-  // the first round is one +z block whose fill deviates ~3 > T. The chain
-  // drops the floors and keeps the per-face decomposition (2 blocks, filled),
-  // not the exact one (4), even with a single round per stage.
-  const Mesh solid = voxel_mesh(grooved_lipped_cells());
-  DecomposeOptions o;
-  o.orient = false;
-  EXPECT_EQ(decompose(solid, o).blocks.size(), 4u);
-  o.tolerance_fraction = 1.0;
-  o.tolerance_abs = 1.2;
-  const DecomposeResult per_face = decompose(solid, o);
-  EXPECT_EQ(per_face.blocks.size(), 2u);
-  EXPECT_EQ(per_face.num_tolerance_rounds, 1);
-  EXPECT_GT(per_face.deviation_bound, 0.9);  // the groove's fill, 1 deep
-  EXPECT_LE(per_face.deviation_bound, 1.2);
-  o.tolerance_floor_scale = 6.0;
-  for (int rounds : {1, 2}) {
-    o.tolerance_rounds = rounds;
-    const DecomposeResult floored = decompose(solid, o);
-    EXPECT_GT(floored.num_floored_faces, 0u);
-    // The floored round(s) failed, then the per-face one passed (before the
-    // chain, one failing round went straight to the exact blocks).
-    EXPECT_GE(floored.num_tolerance_rounds, rounds + 1) << rounds;
-    ASSERT_EQ(floored.blocks.size(), per_face.blocks.size()) << rounds;
-    EXPECT_EQ(floored.deviation_bound, per_face.deviation_bound) << rounds;
-    for (std::size_t b = 0; b < floored.blocks.size(); ++b) {
-      EXPECT_EQ(floored.blocks[b].axis, per_face.blocks[b].axis);
-      EXPECT_EQ(floored.blocks[b].mesh.vertices, per_face.blocks[b].mesh.vertices);
-      EXPECT_TRUE(is_height_field(floored.blocks[b].mesh, axis_direction(floored.blocks[b].axis)));
-    }
-  }
-}
-
 // Regression (issue 17, "every closed model gets blocks at the default"): a
 // spike 3.3e-4 x the diagonal tall that no axis sees. The thin-feature
 // repair fails on it (its smoothing makes the surface cross itself), so the

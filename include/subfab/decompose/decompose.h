@@ -45,8 +45,7 @@ struct DecomposeOptions {
                                     // thesis's exact decomposition); see merge_within_tolerance()
   double tolerance_abs = std::numeric_limits<double>::infinity();  // --tolerance-abs: model units; the smaller wins
   int tolerance_rounds = 4;         // within a tolerance: decompositions under allowances (tolerance_allowances())
-                                    // with base floors, then as many without them (per face), before the exact
-                                    // one (or the features' allowances only) (>= 1)
+                                    // before the exact one (>= 1)
   std::vector<double> tolerance_depth_fractions = {2.0, 1.0, 0.5};  // within a tolerance: a face may lean past
                                     // vertical when its undercut depth <= q x T, q first the first of these (> 0,
                                     // unitless); where a block's milled shape fails the measure, the faces in its
@@ -57,8 +56,8 @@ struct DecomposeOptions {
   double tolerance_floor_scale = 0.25;  // within a tolerance: a face whose undercut is deeper than q x T may still
                                     // lean in boxes whose base lies at most this x q x T / |n.d| under its top (the
                                     // fill there is that short; allowances_with_floors(); --tolerance-floors; >= 0,
-                                    // unitless). Where floored rounds fail the measure, the floors go first, then the
-                                    // per-face allowances, then the exact path. 0: per face only. 0.25 (the default):
+                                    // unitless). Where a block fails the measure, its faces' levels step down (floors
+                                    // shrink with them); after tolerance_rounds, the exact path. 0: per face only. 0.25 (the default):
                                     // never more blocks than per face on the models measured, often far fewer
                                     // (airplane at 1.8e-3 9 vs 18, cube spike at 9.8e-4 and height 0.4 5 vs 6;
                                     // bench/RESULTS.md); 0.5 and 1 fail the measure on curved undersides

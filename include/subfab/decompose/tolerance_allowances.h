@@ -84,16 +84,12 @@ struct OverhangAllowances {
 
 //! allowances_at() with base floors (see OverhangAllowances): bit k of
 //! face f is set when depths[f][k] <= q T (floor -inf) or, with
-//! floor_scale S > 0 and bit k of floor_axes[f] set (floor_axes empty:
-//! every face and axis), whenever the face faces away from an axis along
-//! e_k (floor h_f - S q T / c), q = fractions[level[f][k]]; nothing past the
-//! last level. decompose() clears a face's floor_axes bit where a block
-//! leaning on that floor fails the measure, and all of them when the
-//! floored rounds run out (then the allowances are the per-face ones).
+//! `with_floors`, whenever the face faces away from an axis along e_k
+//! (floor h_f - q T / c), q = fractions[level[f][k]]; nothing past the last
+//! level.
 OverhangAllowances allowances_with_floors(const Mesh& mesh, const std::vector<std::array<double, 3>>& depths,
                                           const std::vector<std::array<std::uint8_t, 3>>& level,
-                                          const std::vector<double>& fractions, double tolerance, double floor_scale,
-                                          const std::vector<std::uint8_t>& floor_axes = {});
+                                          const std::vector<double>& fractions, double tolerance, double floor_scale);
 
 //! Number of faces with an allowance whose floor is finite (allowed only in
 //! some boxes).
