@@ -70,12 +70,17 @@ struct Optimizer {
     for (std::size_t j = 0; j < st.hexes->size(); ++j) worst = std::min(worst, detail::star_hex_quality(st, j));
     return worst;
   }
-  double worst_if(const VertexStar& st, const Vec3& p) {
+  //! `measure(st)` with v moved to `p` (v put back after).
+  template <class Measure>
+  double with_vertex_at(const VertexStar& st, const Vec3& p, Measure&& measure) {
     const Vec3 old = mesh.vertices[st.v];
     mesh.vertices[st.v] = p;
-    const double q = worst_at(st);
+    const double q = measure(st);
     mesh.vertices[st.v] = old;
     return q;
+  }
+  double worst_if(const VertexStar& st, const Vec3& p) {
+    return with_vertex_at(st, p, [this](const VertexStar& s) { return worst_at(s); });
   }
   Vec3 mean_target(std::size_t v) const {
     const auto& nb = topo.on_boundary[v] ? topo.boundary_neighbors[v] : topo.neighbors[v];
@@ -168,11 +173,7 @@ struct Optimizer {
     return e;
   }
   double energy_if(const VertexStar& st, const Vec3& p) {
-    const Vec3 old = mesh.vertices[st.v];
-    mesh.vertices[st.v] = p;
-    const double e = energy_at(st);
-    mesh.vertices[st.v] = old;
-    return e;
+    return with_vertex_at(st, p, [this](const VertexStar& s) { return energy_at(s); });
   }
 
   //! A few gradient steps (central differences, backtracking) on the soft-min
