@@ -306,8 +306,9 @@ void add_decompose_options(CLI::App& sub, DecomposeArgs& args) {
   sub.add_option("--tolerance-floors", args.tolerance_floors,
                  "Within a tolerance T: also let a face whose undercut is deeper than q x T lean past vertical in "
                  "the blocks whose base lies at most S x q x T / |n.d| under it (the fill there is that short; "
-                 "S = this, default 0.25; 0 = per face only; where such blocks fail the measure their floors are dropped first, then the "
-                 "per-face allowances, then the exact path; see bench/RESULTS.md)")
+                 "S = this, default 0.25; 0 = per face only; where a block fails the measure, the faces allowed in it step "
+                 "down a level and their floors shrink with it, for up to 4 rounds, then the exact path; see "
+                 "docs/decompose.md)")
       ->check(CLI::NonNegativeNumber);
   sub.add_option("--smooth", args.smooth,
                  "Fewer blocks for a detailed model (thesis 4.3.5): smooth it (Taubin low-pass, as `subfab smooth`, "

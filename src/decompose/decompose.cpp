@@ -473,7 +473,7 @@ bool stages_within_tolerance(const Mesh& solid, const std::vector<std::array<dou
       return true;
     }
     if (allowed == last) return false;  // nothing left to lower
-    const std::size_t before = num_allowed;
+    const OverhangAllowances before = allowed;
     if (round + 1 >= options.tolerance_rounds) {
       allowed = last;
     } else {
@@ -487,8 +487,8 @@ bool stages_within_tolerance(const Mesh& solid, const std::vector<std::array<dou
       for (std::size_t i = 0; i < milled.failures.size() && first.empty(); ++i)
         if (!milled.failures[i].empty()) first = "block " + std::to_string(i + 1) + ": " + milled.failures[i];
       progress->info(std::to_string(milled.num_failed()) + " block(s) beyond the tolerance (" + first + "); " +
-                     std::to_string(before - count_allowed_faces(allowed.bits)) +
-                     " faces lose allowances, decomposing again with " + std::to_string(count_everywhere(allowed)) +
+                     std::to_string(count_changed_faces(before, allowed)) +
+                     " faces get smaller allowances, decomposing again with " + std::to_string(count_everywhere(allowed)) +
                      " faces allowed (" + std::to_string(count_floored_faces(allowed)) + " more above base floors)");
     }
   }

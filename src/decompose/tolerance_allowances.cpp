@@ -106,12 +106,26 @@ OverhangAllowances allowances_with_floors(const Mesh& mesh, const std::vector<st
 
 std::size_t count_floored_faces(const OverhangAllowances& allowances) {
   std::size_t n = 0;
-  for (std::size_t f = 0; f < allowances.bits.size(); ++f)
+  for (std::size_t f = 0; f < allowances.bits.size(); ++f) {
+    bool allowed = false, somewhere_everywhere = false;
     for (std::size_t k = 0; k < 3; ++k)
-      if ((allowances.bits[f] & (1u << k)) && std::isfinite(allowances.floors[f][k])) {
-        ++n;
-        break;
+      if (allowances.bits[f] & (1u << k)) {
+        allowed = true;
+        if (!std::isfinite(allowances.floors[f][k])) somewhere_everywhere = true;
       }
+    if (allowed && !somewhere_everywhere) ++n;
+  }
+  return n;
+}
+
+std::size_t count_changed_faces(const OverhangAllowances& before, const OverhangAllowances& after) {
+  std::size_t n = 0;
+  for (std::size_t f = 0; f < before.bits.size() && f < after.bits.size(); ++f) {
+    bool changed = before.bits[f] != after.bits[f];
+    for (std::size_t k = 0; k < 3 && !changed; ++k)
+      changed = (after.bits[f] & (1u << k)) && before.floors[f][k] != after.floors[f][k];
+    if (changed) ++n;
+  }
   return n;
 }
 

@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <set>
 
 #include "subfab/core/error.h"
@@ -226,6 +227,24 @@ TEST(ToleranceAllowances, ABaseFloorLetsABlockWhoseBaseLiesJustUnderAShallowOver
   EXPECT_LE(below.deviation_bound, 0.8);
 }
 
+
+// Regression (num_allowed_faces said 53 of 10796 faces on airplane at the
+// default floors, 3882 per face): a face allowed in every box along one
+// axis and only above a floor along another is allowed everywhere, not
+// floored. count_changed_faces() also counts a floor that rises.
+TEST(ToleranceAllowances, AFaceAllowedEverywhereOnOneAxisIsNotCountedAsFloored) {
+  const double inf = std::numeric_limits<double>::infinity();
+  OverhangAllowances a;
+  a.bits = {0b001 | 0b100, 0b100, 0b010, 0};
+  a.floors = {{-inf, 0, 3.0}, {0, 0, 2.0}, {0, -inf, 0}, {1.0, 1.0, 1.0}};
+  EXPECT_EQ(count_floored_faces(a), 1u);  // face 1 only
+  EXPECT_EQ(count_changed_faces(a, a), 0u);
+  OverhangAllowances b = a;
+  b.floors[1][2] = 2.5;  // a floor rises: bit kept, allowance smaller
+  b.floors[3][0] = 7.0;  // unused floor (bit clear): no change
+  b.bits[2] = 0;         // a bit cleared
+  EXPECT_EQ(count_changed_faces(a, b), 2u);
+}
 
 // Regression (issue 17, "every closed model gets blocks at the default"): a
 // spike 3.3e-4 x the diagonal tall that no axis sees. The thin-feature

@@ -91,8 +91,14 @@ OverhangAllowances allowances_with_floors(const Mesh& mesh, const std::vector<st
                                           const std::vector<std::array<std::uint8_t, 3>>& level,
                                           const std::vector<double>& fractions, double tolerance, double floor_scale);
 
-//! Number of faces with an allowance whose floor is finite (allowed only in
-//! some boxes).
+//! Number of faces allowed to lean only above base floors: every axis with
+//! an allowance has a finite floor (a face allowed in every box along some
+//! axis is not counted, whatever its other axes' floors).
 std::size_t count_floored_faces(const OverhangAllowances& allowances);
+
+//! Number of faces whose allowance differs between `before` and `after`: a
+//! bit set or cleared, or the floor of a set bit moved (a floor that only
+//! rises shrinks the allowance without clearing a bit).
+std::size_t count_changed_faces(const OverhangAllowances& before, const OverhangAllowances& after);
 
 }  // namespace subfab
