@@ -6,6 +6,7 @@
 #include "fidelity/fix_infeasible_feature.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <optional>
 #include <utility>
@@ -68,11 +69,17 @@ bool turns_less_than_75_degrees(const Vec3& before, const Vec3& after) {
   return after.dot(before) > 0.25 * after.norm() * before.norm();
 }
 
-//! Moves the vertices `ids` to `positions` unless a face around them would
+//! Moves the vertices `ids` to `positions` (coordinates that change by at
+//! most w.coordinate_noise kept as they are) unless a face around them would
 //! flip or degenerate or a vertex would leave the deviation cap; returns
 //! whether it moved them.
 bool move_vertices(RepairWork& w, const std::vector<std::vector<int>>& star, const std::vector<int>& ids,
-                   const std::vector<Vec3>& positions, double cap) {
+                   std::vector<Vec3> positions, double cap) {
+  for (std::size_t i = 0; i < ids.size(); ++i)
+    for (int k = 0; k < 3; ++k) {  // rounding noise: keep the coordinate (see RepairWork)
+      const double now = w.mesh.vertices[static_cast<std::size_t>(ids[i])][k];
+      if (std::abs(positions[i][k] - now) <= w.coordinate_noise) positions[i][k] = now;
+    }
   for (std::size_t i = 0; i < ids.size(); ++i)
     if (!((positions[i] - w.reference.vertices[static_cast<std::size_t>(ids[i])]).norm() <= cap)) return false;
   std::vector<int> faces;

@@ -25,6 +25,13 @@ namespace subfab::detail {
 struct RepairWork {
   Mesh mesh;
   Mesh reference;
+  //! A vertex move changes no coordinate by this little or less (model
+  //! units; 0: off): such a change is the rounding noise of the candidate
+  //! formulas (a projection onto a plane, a centroid of equal coordinates),
+  //! and applying it moves a vertex off the axis-aligned plane it shared with
+  //! its neighbours (anchor.off: 8.7e-13 off y = 0.0960186, which left a
+  //! block with a sheet that thin, not a solid once written in float32).
+  double coordinate_noise = 0.0;
 };
 
 //! Which local edits fix_infeasible_feature() tries.

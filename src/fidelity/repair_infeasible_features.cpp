@@ -137,7 +137,7 @@ RepairResult repair_infeasible_features(const Mesh& input, const RepairOptions& 
   // A. Local edits that each strictly reduce the number of features
   // (detail::fix_infeasible_feature), with refinement of the stars no edit fixes.
   {
-    detail::RepairWork w{input, input};
+    detail::RepairWork w{input, input, 1e-9 * diagonal};
     int level = 0;
     // The chamfer is tried only once refinement is exhausted: on the refined
     // stars its strip is small, and the meshes the other edits repair are

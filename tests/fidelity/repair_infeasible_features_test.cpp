@@ -179,6 +179,21 @@ TEST(RepairInfeasibleFeatures, AnchorFlukeTipsAreStraightened) {
   expect_repaired(anchor, r, o);
   EXPECT_LE(r.report.max_deviation_fraction(), 0.002);
   EXPECT_LE(r.report.num_faces_new, 40);
+  // Regression (machine STL of block 044 not a solid in float32): the move
+  // of input vertex 501 (0.0460865, 0.0960186, 0.122067), on the plane
+  // y = 0.0960186 of its neighbours, changed its y by 8.7e-13 (rounding of
+  // the projection); the box plane through it then cut an 8.7e-13 sheet.
+  // A moved input vertex keeps every coordinate it does not really change.
+  const double diagonal = bounding_box(anchor).diagonal();
+  std::size_t moved = 0;
+  for (std::size_t v = 0; v < anchor.vertices.size(); ++v)
+    for (int k = 0; k < 3; ++k) {
+      const double change = std::abs(r.mesh.vertices[v][k] - anchor.vertices[v][k]);
+      EXPECT_TRUE(change == 0.0 || change > 1e-9 * diagonal) << "vertex " << v << " coordinate " << k << ": " << change;
+      if (change > 0) ++moved;
+    }
+  EXPECT_GT(moved, 0u);
+  EXPECT_EQ(r.mesh.vertices[501].y(), anchor.vertices[501].y());
 }
 
 //! The star of a ridge peak (vertex 0) closed by a cone to vertex 9, after
