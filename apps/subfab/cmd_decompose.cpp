@@ -40,11 +40,17 @@ struct DecomposeArgs {
   double tolerance = 0.0;
   double tolerance_abs = std::numeric_limits<double>::infinity();
   double tolerance_floors = DecomposeOptions{}.tolerance_floor_scale;
+  bool tolerance_given = false;  // --tolerance or --tolerance-abs on the command line (even 0)
   std::optional<double> smooth;  // --smooth [F]: smoothing cap, fraction of the diagonal
   bool no_view = false;
   RepairInputOptions repair;
   CommonOptions common;
 };
+
+//! The tolerance (x bbox diagonal) decompose falls back to, without
+//! --tolerance, where the thin-feature repair gives up: a hobby machine
+//! holds about 0.1 mm on a 200 mm part (issue 17).
+constexpr double kFallbackTolerance = 5e-4;
 
 Vec3 parse_machine(const std::string& text) {
   const auto fail = [&text]() {
@@ -98,6 +104,10 @@ int run_decompose(const DecomposeArgs& args) {
   options.tolerance_fraction = args.tolerance;
   options.tolerance_abs = args.tolerance_abs;
   options.tolerance_floor_scale = args.tolerance_floors;
+  // Where the thin-feature repair gives up, decompose within 5e-4 x diagonal
+  // rather than fail, unless the user chose exactness or another trade.
+  if (!args.tolerance_given && !args.exact && !(args.max_overhang > 0) && !args.smooth)
+    options.fallback_tolerance_fraction = kFallbackTolerance;
 
   ConsoleProgress progress(std::cerr, args.common.quiet, stderr_is_terminal());
   options.progress = &progress;
@@ -207,6 +217,9 @@ int run_decompose(const DecomposeArgs& args) {
     msg << "; slivers (thinner than " << result.sliver_thickness / diagonal
         << " x diagonal where the model is thicker): " << result.num_slivers_merged << " merged, "
         << result.num_slivers_dropped << " dropped, " << result.num_slivers << " left";
+    if (!result.tolerance_fallback.empty())
+      msg << "; NOT EXACT: the thin-feature repair gave up, so this tolerance (the default's fallback, "
+          << kFallbackTolerance << " x diagonal) was used; --tolerance 0 refuses instead";
     if (result.num_features_within_tolerance > 0)
       msg << "; " << result.num_features_within_tolerance
           << " crease(s)/spike(s) no exact block can cover were left to the tolerance instead of the thin-feature "
@@ -248,6 +261,8 @@ int run_decompose(const DecomposeArgs& args) {
     j["num_sticking_out"] = std::count(result.filled.begin(), result.filled.end(), char{1});
     j["deviation_bound"] = result.deviation_bound;
     j["num_features_within_tolerance"] = result.num_features_within_tolerance;
+    j["tolerance_fallback"] =
+        result.tolerance_fallback.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(result.tolerance_fallback);
     j["sliver_thickness"] = result.sliver_thickness;
     j["num_slivers"] = result.num_slivers;
     j["num_slivers_merged"] = result.num_slivers_merged;
@@ -298,11 +313,14 @@ void add_decompose_options(CLI::App& sub, DecomposeArgs& args) {
                  "filled) while the symmetric Hausdorff distance between the model made and the input stays "
                  "within it; every block stays an exact height field and blocks do not overlap. Creases and spikes "
                  "no exact block can cover are left to the tolerance where their undercuts are within it (no "
-                 "thin-feature repair there)")
-      ->check(CLI::NonNegativeNumber);
+                 "thin-feature repair there). Not given: exact blocks, except where the thin-feature repair gives "
+                 "up: then 5e-4 (said and recorded); --tolerance 0 refuses instead (exit 3)")
+      ->check(CLI::NonNegativeNumber)
+      ->each([&args](const std::string&) { args.tolerance_given = true; });
   sub.add_option("--tolerance-abs", args.tolerance_abs,
                  "Deviation allowed in model units (with --tolerance the smaller wins)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::NonNegativeNumber)
+      ->each([&args](const std::string&) { args.tolerance_given = true; });
   sub.add_option("--tolerance-floors", args.tolerance_floors,
                  "Within a tolerance T: also let a face whose undercut is deeper than q x T lean past vertical in "
                  "the blocks whose base lies at most S x q x T / |n.d| under it (the fill there is that short; "

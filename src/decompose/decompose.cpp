@@ -66,6 +66,8 @@ void check_options(const DecomposeOptions& o) {
       !std::all_of(o.tolerance_depth_fractions.begin(), o.tolerance_depth_fractions.end(),
                    [](double q) { return q > 0 && std::isfinite(q); }))
     throw InvalidArgumentError("tolerance_depth_fractions must be positive finite numbers (at least one)");
+  if (!(o.fallback_tolerance_fraction >= 0) || !std::isfinite(o.fallback_tolerance_fraction))
+    throw InvalidArgumentError("the fallback tolerance must be a fraction of the bounding-box diagonal >= 0");
   if (!(o.sliver_thickness >= 0) || !std::isfinite(o.sliver_thickness))
     throw InvalidArgumentError("the sliver thickness must be a fraction of the bounding-box diagonal >= 0");
   overhang_sine(o.max_overhang_deg);  // throws on a value outside [0, 45] degrees
@@ -367,6 +369,13 @@ std::vector<std::uint8_t> pinned_allowances(const Mesh& solid, const Feasibility
 //! Stage 1b of decompose(): the local repair of the features `infeasible`
 //! of result.canonical (4.3.5); replaces result.canonical by the repaired
 //! solid and sets result.repaired_input and result.repair.
+//! The thin-feature repair gave up at tolerance 0 (decompose() may then
+//! decompose within options.fallback_tolerance_fraction instead).
+class RepairGaveUp : public AlgorithmError {
+ public:
+  using AlgorithmError::AlgorithmError;
+};
+
 void repair_stage(const Mesh& input, const FeasibilityResult& infeasible, const DecomposeOptions& options,
                   DecomposeResult& result) {
   Progress* progress = options.progress;
@@ -388,8 +397,10 @@ void repair_stage(const Mesh& input, const FeasibilityResult& infeasible, const 
     if (result.tolerance > 0)
       within = " (within the tolerance, the faces there may not lean past vertical: their undercuts are deeper "
                "than the tolerance allows, or the blocks holding them failed the measure)";
-    throw AlgorithmError(std::string("the local repair of infeasible features failed: ") + e.what() + within +
-                         ". Without it: " + infeasible_message(infeasible, input, options.orient));
+    const std::string message = std::string("the local repair of infeasible features failed: ") + e.what() + within +
+                                ". Without it: " + infeasible_message(infeasible, input, options.orient);
+    if (result.tolerance > 0) throw AlgorithmError(message);
+    throw RepairGaveUp(message);
   }
   Mesh in_input = repaired_in_input_frame(input, result.canonical, repaired.mesh, result.rotation);
   // The rounding back to the input frame must keep a valid solid.
@@ -494,10 +505,8 @@ bool stages_within_tolerance(const Mesh& solid, const std::vector<std::array<dou
   }
 }
 
-}  // namespace
-
-DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
-  check_options(options);
+//! decompose() at options' tolerance, no fallback.
+DecomposeResult decompose_once(const Mesh& input, const DecomposeOptions& options) {
   Progress* progress = options.progress;
   const auto start = Clock::now();
   DecomposeResult result;
@@ -707,6 +716,33 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
   }
   result.timings.total = seconds_since(start);
   return result;
+}
+
+}  // namespace
+
+DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
+  check_options(options);
+  const double diagonal = bounding_box(input).diagonal();
+  const bool exact = std::min(options.tolerance_fraction * diagonal, options.tolerance_abs) == 0;
+  if (!exact || !(options.fallback_tolerance_fraction > 0) || !options.repair) return decompose_once(input, options);
+  const auto start = Clock::now();
+  try {
+    return decompose_once(input, options);
+  } catch (const RepairGaveUp& e) {
+    DecomposeOptions within = options;
+    within.tolerance_fraction = options.fallback_tolerance_fraction;
+    within.tolerance_abs = std::numeric_limits<double>::infinity();
+    if (options.progress)
+      options.progress->warn(std::string(e.what()) + "\nDecomposing within a tolerance of " +
+                             std::to_string(options.fallback_tolerance_fraction) +
+                             " x the bounding-box diagonal instead (creases and spikes finer than it may keep "
+                             "their undercuts; every block is still an exact height field, the deviation is "
+                             "measured). Give --tolerance 0 to refuse, or --tolerance F to choose it.");
+    DecomposeResult result = decompose_once(input, within);
+    result.tolerance_fallback = e.what();
+    result.timings.total = seconds_since(start);
+    return result;
+  }
 }
 
 }  // namespace subfab

@@ -174,6 +174,8 @@ std::string decomposition_json(const Mesh& input, const DecomposeResult& result,
                        {"tolerance_fraction", diagonal > 0 ? result.tolerance / diagonal : 0.0}};
   if (result.tolerance > 0)  // within a tolerance only: the exact output stays as it was
     doc["parameters"]["tolerance_floor_scale"] = o.tolerance_floor_scale;
+  if (!result.tolerance_fallback.empty())  // the thin-feature repair gave up at tolerance 0: why
+    doc["parameters"]["tolerance_fallback"] = result.tolerance_fallback;
   Json list = Json::array();
   double total = 0.0, smallest = std::numeric_limits<double>::infinity(), steepest = 0.0;
   double thinnest = std::numeric_limits<double>::infinity();

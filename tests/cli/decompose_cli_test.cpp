@@ -29,6 +29,9 @@ TEST(DecomposeCli, DecomposesValidatesAndIsThreadIndependent) {
   auto r2 = run_subfab("decompose " + quoted(mesh) + " -o " + quoted(dir / "two") + " --threads 2 --json");
   ASSERT_EQ(r2.exit_code, 0) << r2.output;
   EXPECT_NE(r2.output.find("\"num_blocks\""), std::string::npos);
+  // An exact decomposition (no --tolerance, nothing to repair): no fallback.
+  EXPECT_NE(r2.output.find("\"tolerance\": 0.0,"), std::string::npos) << r2.output;
+  EXPECT_NE(r2.output.find("\"tolerance_fallback\": null"), std::string::npos) << r2.output;
   EXPECT_TRUE(fs::exists(dir / "one" / "blocks" / "block_000.obj"));
   EXPECT_TRUE(fs::exists(dir / "one" / "mill" / "block_000.stl"));
   // Byte-identical outputs apart from the timings.

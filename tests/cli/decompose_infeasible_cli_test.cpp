@@ -56,5 +56,30 @@ TEST(DecomposeCli, ASpikeTheRepairCannotFixDecomposesWithinATolerance) {
   EXPECT_NE(valid.output.find("all checks passed"), std::string::npos) << valid.output;
 }
 
+// Issue 17, "every closed model gets blocks at the default": without
+// --tolerance, where the thin-feature repair gives up, decompose falls back
+// to 5e-4 x diagonal, says so and records it (validate then checks within
+// it); --tolerance 0 (above) and --exact still refuse.
+TEST(DecomposeCli, WithoutAToleranceAFailedRepairFallsBackToTheDefaultsTolerance) {
+  const fs::path dir = test::temp_dir();
+  const fs::path mesh = test::data_path("regression/cube_tiny_diagonal_spike.obj");
+  const auto r = run_subfab("decompose " + quoted(mesh) + " -o " + quoted(dir / "out") + " --json --no-view");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("the local repair of infeasible features failed"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("Decomposing within a tolerance of 0.000500 x the bounding-box diagonal instead"),
+            std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("NOT EXACT: the thin-feature repair gave up"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("\"tolerance_fallback\": \"the local repair"), std::string::npos) << r.output;
+  const std::string json = test::slurp(dir / "out" / "decomposition.json");
+  EXPECT_NE(json.find("\"tolerance_fraction\": 0.0005"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"tolerance_fallback\""), std::string::npos) << json;
+  const auto valid = run_subfab("validate " + quoted(mesh) + " " + quoted(dir / "out"));
+  EXPECT_EQ(valid.exit_code, 0) << valid.output;
+  EXPECT_NE(valid.output.find("decomposition within a tolerance of 0.0005 x diagonal"), std::string::npos)
+      << valid.output;
+  const auto exact = run_subfab("decompose " + quoted(mesh) + " -o " + quoted(dir / "exact") + " --exact --quiet");
+  EXPECT_EQ(exact.exit_code, 3) << exact.output;
+}
+
 }  // namespace
 }  // namespace subfab

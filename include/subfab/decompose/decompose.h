@@ -44,6 +44,13 @@ struct DecomposeOptions {
   double tolerance_fraction = 0.0;  // --tolerance: deviation allowed, x bbox diagonal (0 = exact blocks only, the
                                     // thesis's exact decomposition); see merge_within_tolerance()
   double tolerance_abs = std::numeric_limits<double>::infinity();  // --tolerance-abs: model units; the smaller wins
+  double fallback_tolerance_fraction = 0.0;  // at tolerance 0: when the thin-feature repair (4.3.5) gives up,
+                                    // decompose again within this tolerance (x bbox diagonal) instead of failing:
+                                    // the features' faces may lean where their undercuts are within it, the
+                                    // blocks are milled and measured as with --tolerance (issue 17, "every closed
+                                    // model gets blocks"). 0 (the library's default): AlgorithmError. The command
+                                    // sets 5e-4 unless --tolerance, --tolerance-abs, --exact, --max-overhang or
+                                    // --smooth is given (a hobby machine holds about 0.1 mm on a 200 mm part)
   int tolerance_rounds = 4;         // within a tolerance: decompositions under allowances (tolerance_allowances())
                                     // before the exact one (>= 1)
   std::vector<double> tolerance_depth_fractions = {2.0, 1.0, 0.5};  // within a tolerance: a face may lean past
@@ -100,6 +107,9 @@ struct DecomposeResult {
   std::size_t num_slivers = 0;           // slivers among the output blocks (kept: nothing removes them within T)
   std::size_t num_slivers_merged = 0;    // slivers merged into a neighbour within the tolerance
   std::size_t num_slivers_dropped = 0;   // slivers dropped within the tolerance
+  std::string tolerance_fallback;  // set when the thin-feature repair gave up at tolerance 0 and the result was
+                                   // made within options.fallback_tolerance_fraction instead: why (the repair's
+                                   // message); empty otherwise
   std::size_t num_features_within_tolerance = 0;  // infeasible features (creases, spikes) left to the tolerance
                                                   // instead of the thin-feature repair (their faces' allowances
                                                   // pinned); 0 when none or when they were repaired
@@ -127,7 +137,10 @@ struct DecomposeResult {
 //! blocks holding them are milled and measured like the others; only when
 //! those blocks still fail the measure with no other allowance left, or
 //! when some feature's faces are not allowed, are the features repaired.
-//! Every block is an exact height field whatever T.
+//! Every block is an exact height field whatever T. At T = 0 with
+//! options.fallback_tolerance_fraction > 0 (and options.repair), a repair
+//! that gives up is followed by the decomposition within that tolerance
+//! (result.tolerance_fallback says why; progress warns).
 //! \throw InvalidArgumentError on bad options; AlgorithmError when a stage fails.
 DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options);
 
