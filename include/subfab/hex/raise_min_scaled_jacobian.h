@@ -48,8 +48,12 @@ struct RaiseMinScaledJacobianOptions {
   int sweeps = 20;               // at most this many sweeps (stops earlier when a sweep gains < 1e-4 on the minimum)
   bool free_boundary_for_inverted = true;  // last resort for elements still inverted (see above)
   double max_off_surface = 0.25; // last resort: how far a boundary vertex may leave the surface, fraction of its mean edge
-  double quality_threshold = 0.8; // then: sweeps as above over the hexahedra under this (the average rises) ...
-  int quality_sweeps = 3;         // ... at most this many (0: none)
+  double quality_threshold = 1.0; // then: sweeps as above over the hexahedra under this (the average rises) ...
+  int quality_sweeps = 12;        // ... at most this many (0: none) ...
+  double quality_gain = 2e-4;     // ... stopping when one raises the average scaled Jacobian less than this (and not the minimum)
+  double loose_below = 0.5;       // in those sweeps, the boundary vertices of the hexahedra under this are loose: ...
+  double loose_attraction = 1.0;  // ... free within max_off_surface of their mean edge of the surface, energy plus
+                                  // loose_attraction x (distance / mean edge)^2 (0: every boundary vertex slides on the surface)
 };
 
 struct RaiseMinScaledJacobianReport {
@@ -57,6 +61,7 @@ struct RaiseMinScaledJacobianReport {
   std::size_t num_inverted_before = 0, num_inverted_after = 0;
   std::size_t num_moves = 0;              // accepted vertex moves
   std::size_t num_off_surface = 0;        // boundary vertices the last resort moved off the surface
+  std::size_t num_loose_moved = 0;        // loose boundary vertices the quality sweeps moved (off the surface, most of them)
   int sweeps = 0;
   int untangle_steps = 0;                 // steps of the joint untangling (last resort)
 };
