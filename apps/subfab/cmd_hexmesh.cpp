@@ -97,6 +97,7 @@ nlohmann::ordered_json to_json(const HexmeshArgs& args, const Mesh& input, const
                      {"untangle_steps", r.raise.untangle_steps},
                      {"sweeps", r.raise.sweeps},
                      {"boundary_vertices_off_surface", r.raise.num_off_surface},
+                     {"repaired_worst", r.raise.repaired_worst},
                      {"loose_boundary_vertices_moved", r.raise.num_loose_moved}};
   j["diagonal"] = r.diagonal;
   j["mean_distance_fraction"] = r.diagonal > 0 ? r.mean_distance / r.diagonal : 0.0;

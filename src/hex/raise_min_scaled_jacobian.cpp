@@ -345,11 +345,12 @@ int sweep(Raiser& raiser, HexMesh& mesh, const SweepRule& rule, std::size_t& mov
 //! The vertices of the hexahedra under the margin, grown by `rings` rings
 //! of edge neighbours, in index order; boundary vertices of the patch with no
 //! allowance yet may slide on the surface (allowance: their distance now).
-std::vector<std::size_t> repair_patch(Raiser& raiser, const HexMesh& mesh, const std::vector<double>& sj, int rings) {
+std::vector<std::size_t> repair_patch(Raiser& raiser, const HexMesh& mesh, const std::vector<double>& sj, int rings,
+                                      double margin) {
   const detail::HexTopology& topo = raiser.topology();
   std::vector<char> in_patch(mesh.vertices.size(), 0);
   for (std::size_t h = 0; h < sj.size(); ++h)
-    if (sj[h] <= kMargin)
+    if (sj[h] <= margin)
       for (int v : mesh.hexes[h]) in_patch[idx(v)] = 1;
   for (int ring = 0; ring < rings; ++ring) {
     std::vector<char> grown = in_patch;
@@ -411,12 +412,14 @@ RaiseMinScaledJacobianReport detail::raise_min_scaled_jacobian(HexMesh& mesh, co
   report.num_inverted_before = count_inverted(sj);
   report.sweeps = sweep(raiser, mesh, {options.threshold, options.sweeps, false}, report.num_moves);
   sj = scaled_jacobians(mesh);
-  if (options.free_boundary_for_inverted && min_of(sj) <= kMargin) {
-    // last resort: the boundary vertices of the hexahedra under the margin
+  // the joint repair of the hexahedra under `margin` (last resort, below)
+  const auto repair_worst = [&](double margin) {
+    // the patch grown by the rings of kRepairs, tried in turn from the same
+    // start, the best kept; the boundary vertices of the hexahedra under the margin
     // may leave the surface (a vertex already off it keeps its distance)
     const detail::HexTopology& topo = raiser.topology();
     for (std::size_t h = 0; h < sj.size(); ++h)
-      if (sj[h] <= kMargin)
+      if (sj[h] <= margin)
         for (int v : mesh.hexes[h])
           if (topo.on_boundary[idx(v)])
             raiser.set_allowance(idx(v), std::max(options.max_off_surface * raiser.scale(idx(v)),
@@ -426,18 +429,28 @@ RaiseMinScaledJacobianReport detail::raise_min_scaled_jacobian(HexMesh& mesh, co
     double best_min = min_of(sj);
     for (const Repair& repair : kRepairs) {
       mesh.vertices = kept;
-      const std::vector<std::size_t> patch = repair_patch(raiser, mesh, sj, repair.rings);
+      const std::vector<std::size_t> patch = repair_patch(raiser, mesh, sj, repair.rings, margin);
       if (repair.laplacian > 0) relax_patch_interior(raiser, mesh, patch, repair.laplacian);
       report.untangle_steps += raiser.untangle_patch(patch, kUntangleSteps);
-      report.sweeps += sweep(raiser, mesh, {kMargin, options.sweeps, true}, report.num_moves);
+      report.sweeps += sweep(raiser, mesh, {margin, options.sweeps, true}, report.num_moves);
       const double now = min_of(scaled_jacobians(mesh));
       if (now > best_min) best_min = now, best = mesh.vertices;
-      if (best_min > kMargin) break;
+      if (best_min > margin) break;
     }
     mesh.vertices = std::move(best);
     sj = scaled_jacobians(mesh);
     for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
       if (topo.on_boundary[v] && (mesh.vertices[v] - kept[v]).squaredNorm() > 0) ++report.num_off_surface;
+  };
+  if (options.free_boundary_for_inverted && min_of(sj) <= kMargin) repair_worst(kMargin);
+  // few elements still under repair_below: the same joint repair (a local
+  // fold of the boundary's quad layout that one vertex at a time cannot open)
+  if (const double below = options.repair_below; below > kMargin && min_of(sj) <= below) {
+    const auto n = std::count_if(sj.begin(), sj.end(), [below](double q) { return q <= below; });
+    if (static_cast<std::size_t>(n) <= options.repair_max_hexes) {
+      repair_worst(below);
+      report.repaired_worst = static_cast<std::size_t>(n);
+    }
   }
   if (options.quality_sweeps > 0) {
     // the boundary vertices of the hexahedra under loose_below leave the
