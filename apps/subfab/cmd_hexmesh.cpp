@@ -95,7 +95,10 @@ nlohmann::ordered_json to_json(const HexmeshArgs& args, const Mesh& input, const
                      {"inverted_before", r.raise.num_inverted_before},
                      {"moves", r.raise.num_moves},
                      {"untangle_steps", r.raise.untangle_steps},
-                     {"boundary_vertices_off_surface", r.raise.num_off_surface}};
+                     {"sweeps", r.raise.sweeps},
+                     {"boundary_vertices_off_surface", r.raise.num_off_surface},
+                     {"repaired_worst", r.raise.repaired_worst},
+                     {"loose_boundary_vertices_moved", r.raise.num_loose_moved}};
   j["diagonal"] = r.diagonal;
   j["mean_distance_fraction"] = r.diagonal > 0 ? r.mean_distance / r.diagonal : 0.0;
   j["max_distance_fraction"] = r.diagonal > 0 ? r.max_distance / r.diagonal : 0.0;

@@ -73,6 +73,10 @@ class Raiser {
       const double q = detail::star_hex_quality(st, j);
       e += std::exp(-kSharpness * (q - shift)) - kLinear * q;
     }
+    if (attraction_ > 0 && loose_[st.v]) {  // a loose boundary vertex is drawn back to the surface
+      const double d = distance_to_surface(p) / scale_[st.v];
+      e += attraction_ * d * d;
+    }
     mesh_.vertices[st.v] = old;
     return e;
   }
@@ -100,8 +104,11 @@ class Raiser {
   //! Visits v: line searches along the descent direction of the soft-min
   //! of its affected corners (a step must lower the soft-min energy and keep
   //! the smallest corner), then, when that stalls, a pattern search that
-  //! raises the smallest corner. Returns the number of accepted moves.
-  std::size_t visit(std::size_t v, bool free_boundary) {
+  //! raises the smallest corner. Returns the number of accepted moves. A
+  //! loose vertex (set_loose) is free within its allowance whatever
+  //! `free_boundary_all` says.
+  std::size_t visit(std::size_t v, bool free_boundary_all) {
+    const bool free_boundary = free_boundary_all || (attraction_ > 0 && loose_[v]);
     const double scale = scale_[v];
     if (!(scale > 0)) return 0;
     std::size_t moves = 0;
@@ -199,6 +206,16 @@ class Raiser {
     return steps;
   }
 
+  //! Boundary vertex v is loose: in the sweeps that follow it moves freely
+  //! within `allowance` of the surface, its energy plus
+  //! attraction x (distance to the surface / its mean edge)^2.
+  void set_loose(std::size_t v, double allowance, double attraction) {
+    if (loose_.empty()) loose_.assign(mesh_.vertices.size(), 0);
+    loose_[v] = 1;
+    allowance_[v] = std::max(allowance_[v], allowance);
+    attraction_ = attraction;
+  }
+  bool loose(std::size_t v) const { return !loose_.empty() && loose_[v]; }
   void set_allowance(std::size_t v, double a) { allowance_[v] = a; }
   double allowance(std::size_t v) const { return allowance_[v]; }
   void init_allowance() { allowance_.assign(mesh_.vertices.size(), 0.0); }
@@ -264,7 +281,9 @@ class Raiser {
   detail::HexTopology topo_;
   std::vector<std::vector<HexCorner>> corners_;  // per vertex: the corners it affects
   std::vector<double> scale_;                 // per vertex: mean edge length at the start
-  std::vector<double> allowance_;             // per boundary vertex: how far it may be off the surface (last resort)
+  std::vector<double> allowance_;             // per boundary vertex: how far it may be off the surface (last resort, loose)
+  std::vector<char> loose_;                   // per vertex: a loose boundary vertex (set_loose); empty: none
+  double attraction_ = 0;                     // weight of a loose vertex's distance to the surface in its energy
   detail::CornerCache cache_;                 // corner determinants and edge units (see refresh_corners)
 };
 
@@ -274,22 +293,30 @@ std::size_t count_inverted(const std::vector<double>& sj) {
   return static_cast<std::size_t>(std::count_if(sj.begin(), sj.end(), [](double q) { return q <= 0; }));
 }
 
-//! Sweeps over the vertices of the hexahedra under `threshold` (of those
-//! that `select` accepts), worst first. Returns the number of sweeps.
-template <class Select>
-int sweep(Raiser& raiser, HexMesh& mesh, double threshold, int max_sweeps, bool free_boundary, Select select,
-          std::size_t& moves) {
+//! How a run of sweeps picks its vertices and when it stops.
+struct SweepRule {
+  double threshold;        // the vertices of the hexahedra under this scaled Jacobian are visited ...
+  int max_sweeps;          // ... in at most this many sweeps
+  bool free_boundary;      // boundary vertices within their allowance of the surface (else they slide on it)
+  double average_gain = 0; // > 0: stop when a sweep lowers the deficit (sum of threshold - q) by less than
+                           // this per hexahedron (and does not raise the minimum); else by less than kSweepGain
+};
+
+//! Sweeps over the vertices of the hexahedra under the rule's threshold,
+//! worst first. Returns the number of sweeps.
+int sweep(Raiser& raiser, HexMesh& mesh, const SweepRule& rule, std::size_t& moves) {
+  const detail::HexTopology& topo = raiser.topology();
   raiser.refresh_corners();
   double last_min = min_of(raiser.qualities());
   int s = 0;
-  while (s < max_sweeps) {
+  while (s < rule.max_sweeps) {
     ++s;
     const std::vector<double> sj = raiser.qualities();
     std::vector<double> worst(mesh.vertices.size(), 2.0);
     double deficit_before = 0;
     for (std::size_t h = 0; h < sj.size(); ++h)
-      if (sj[h] < threshold && select(h, sj[h])) {
-        deficit_before += threshold - sj[h];
+      if (sj[h] < rule.threshold) {
+        deficit_before += rule.threshold - sj[h];
         for (int v : mesh.hexes[h]) worst[idx(v)] = std::min(worst[idx(v)], sj[h]);
       }
     std::vector<std::pair<double, std::size_t>> order;
@@ -300,14 +327,15 @@ int sweep(Raiser& raiser, HexMesh& mesh, double threshold, int max_sweeps, bool 
     std::vector<std::size_t> vertices(order.size());
     for (std::size_t i = 0; i < order.size(); ++i) vertices[i] = order[i].second;
     std::vector<std::size_t> moved(mesh.vertices.size(), 0);
-    detail::gauss_seidel_sweep(mesh, raiser.topology(), vertices,
-                               [&](std::size_t v) { moved[v] = raiser.visit(v, free_boundary); });
+    detail::gauss_seidel_sweep(mesh, topo, vertices,
+                               [&](std::size_t v) { moved[v] = raiser.visit(v, rule.free_boundary); });
     for (std::size_t m : moved) moves += m;
     const std::vector<double> after = raiser.qualities();
     double deficit_after = 0;
-    for (double q : after) deficit_after += std::max(0.0, threshold - q);
+    for (double q : after) deficit_after += std::max(0.0, rule.threshold - q);
     const double now = min_of(after);
-    const bool gained = now > last_min + kSweepGain || deficit_after < deficit_before - kSweepGain;
+    const double gain = rule.average_gain > 0 ? rule.average_gain * static_cast<double>(after.size()) : kSweepGain;
+    const bool gained = now > last_min + kSweepGain || deficit_after < deficit_before - gain;
     last_min = now;
     if (!gained) break;
   }
@@ -317,11 +345,12 @@ int sweep(Raiser& raiser, HexMesh& mesh, double threshold, int max_sweeps, bool 
 //! The vertices of the hexahedra under the margin, grown by `rings` rings
 //! of edge neighbours, in index order; boundary vertices of the patch with no
 //! allowance yet may slide on the surface (allowance: their distance now).
-std::vector<std::size_t> repair_patch(Raiser& raiser, const HexMesh& mesh, const std::vector<double>& sj, int rings) {
+std::vector<std::size_t> repair_patch(Raiser& raiser, const HexMesh& mesh, const std::vector<double>& sj, int rings,
+                                      double margin) {
   const detail::HexTopology& topo = raiser.topology();
   std::vector<char> in_patch(mesh.vertices.size(), 0);
   for (std::size_t h = 0; h < sj.size(); ++h)
-    if (sj[h] <= kMargin)
+    if (sj[h] <= margin)
       for (int v : mesh.hexes[h]) in_patch[idx(v)] = 1;
   for (int ring = 0; ring < rings; ++ring) {
     std::vector<char> grown = in_patch;
@@ -381,15 +410,16 @@ RaiseMinScaledJacobianReport detail::raise_min_scaled_jacobian(HexMesh& mesh, co
   std::vector<double> sj = scaled_jacobians(mesh);
   report.min_before = min_of(sj);
   report.num_inverted_before = count_inverted(sj);
-  report.sweeps = sweep(raiser, mesh, options.threshold, options.sweeps, false,
-                        [](std::size_t, double) { return true; }, report.num_moves);
+  report.sweeps = sweep(raiser, mesh, {options.threshold, options.sweeps, false}, report.num_moves);
   sj = scaled_jacobians(mesh);
-  if (options.free_boundary_for_inverted && min_of(sj) <= kMargin) {
-    // last resort: the boundary vertices of the hexahedra under the margin
+  // the joint repair of the hexahedra under `margin` (last resort, below)
+  const auto repair_worst = [&](double margin) {
+    // the patch grown by the rings of kRepairs, tried in turn from the same
+    // start, the best kept; the boundary vertices of the hexahedra under the margin
     // may leave the surface (a vertex already off it keeps its distance)
     const detail::HexTopology& topo = raiser.topology();
     for (std::size_t h = 0; h < sj.size(); ++h)
-      if (sj[h] <= kMargin)
+      if (sj[h] <= margin)
         for (int v : mesh.hexes[h])
           if (topo.on_boundary[idx(v)])
             raiser.set_allowance(idx(v), std::max(options.max_off_surface * raiser.scale(idx(v)),
@@ -399,24 +429,50 @@ RaiseMinScaledJacobianReport detail::raise_min_scaled_jacobian(HexMesh& mesh, co
     double best_min = min_of(sj);
     for (const Repair& repair : kRepairs) {
       mesh.vertices = kept;
-      const std::vector<std::size_t> patch = repair_patch(raiser, mesh, sj, repair.rings);
+      const std::vector<std::size_t> patch = repair_patch(raiser, mesh, sj, repair.rings, margin);
       if (repair.laplacian > 0) relax_patch_interior(raiser, mesh, patch, repair.laplacian);
       report.untangle_steps += raiser.untangle_patch(patch, kUntangleSteps);
-      report.sweeps += sweep(raiser, mesh, kMargin, options.sweeps, true,
-                             [](std::size_t, double) { return true; }, report.num_moves);
+      report.sweeps += sweep(raiser, mesh, {margin, options.sweeps, true}, report.num_moves);
       const double now = min_of(scaled_jacobians(mesh));
       if (now > best_min) best_min = now, best = mesh.vertices;
-      if (best_min > kMargin) break;
+      if (best_min > margin) break;
     }
     mesh.vertices = std::move(best);
     sj = scaled_jacobians(mesh);
     for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
       if (topo.on_boundary[v] && (mesh.vertices[v] - kept[v]).squaredNorm() > 0) ++report.num_off_surface;
+  };
+  if (options.free_boundary_for_inverted && min_of(sj) <= kMargin) repair_worst(kMargin);
+  // few elements still under repair_below: the same joint repair (a local
+  // fold of the boundary's quad layout that one vertex at a time cannot open)
+  if (const double below = options.repair_below; below > kMargin && min_of(sj) <= below) {
+    const auto n = std::count_if(sj.begin(), sj.end(), [below](double q) { return q <= below; });
+    if (static_cast<std::size_t>(n) <= options.repair_max_hexes) {
+      repair_worst(below);
+      report.repaired_worst = static_cast<std::size_t>(n);
+    }
   }
   if (options.quality_sweeps > 0) {
-    report.sweeps += sweep(raiser, mesh, options.quality_threshold, options.quality_sweeps, false,
-                           [](std::size_t, double) { return true; }, report.num_moves);
+    // the boundary vertices of the hexahedra under loose_below leave the
+    // hard constraint for an attraction to the surface (thesis D.6: the
+    // edge-cone rectification's surface attraction): where the surface
+    // curves more than the boundary quads can follow, a corner on the
+    // surface cannot open without leaving it a little
+    std::vector<Vec3> before;
+    if (options.loose_attraction > 0) {
+      before = mesh.vertices;
+      const detail::HexTopology& topo = raiser.topology();
+      for (std::size_t h = 0; h < sj.size(); ++h)
+        if (sj[h] < options.loose_below)
+          for (int v : mesh.hexes[h])
+            if (topo.on_boundary[idx(v)])
+              raiser.set_loose(idx(v), options.max_off_surface * raiser.scale(idx(v)), options.loose_attraction);
+    }
+    report.sweeps += sweep(raiser, mesh, {options.quality_threshold, options.quality_sweeps, false, options.quality_gain},
+                           report.num_moves);
     sj = scaled_jacobians(mesh);
+    for (std::size_t v = 0; v < before.size(); ++v)
+      if (raiser.loose(v) && (mesh.vertices[v] - before[v]).squaredNorm() > 0) ++report.num_loose_moved;
   }
   report.min_after = min_of(sj);
   report.num_inverted_after = count_inverted(sj);

@@ -28,9 +28,22 @@
 //! neighbours slide on it; then sweeps as above, boundary free within the same
 //! bounds. Kept only if the worst element rose (validity first: the distance
 //! to the input grows a little there; the report counts those vertices).
-//! Finally `quality_sweeps` sweeps as in 1-3 over the hexahedra under
-//! `quality_threshold`: the same moves, which cannot lower any
-//! neighbourhood's worst element, raise the average (cactus .828 -> .875).
+//! Then, when at most `repair_max_hexes` hexahedra are under `repair_below`,
+//! the same joint repair lifts them (fertility .209 -> .310, humanoid .250 ->
+//! .452: one boundary vertex whose four hexahedra all have angles over 100
+//! degrees at it, a fold of the boundary's quad layout); kept only if the
+//! worst element rose.
+//! Finally up to `quality_sweeps` sweeps as in 1-3 over the hexahedra under
+//! `quality_threshold` (by default every hexahedron), until a sweep raises the
+//! average by less than `quality_gain`: the same moves, which cannot lower any
+//! neighbourhood's worst element, raise the average (cactus .785 -> .871).
+//! In those sweeps the boundary vertices of the hexahedra under `loose_below`
+//! are loose, the surface attraction of the thesis's edge-cone rectification
+//! (D.6, weight alpha) instead of the hard constraint: they move freely within
+//! `max_off_surface` of their mean edge of the surface, their energy plus
+//! loose_attraction x (distance / mean edge)^2; where the surface curves more
+//! than the boundary quads (a limb's tip), a corner on the surface opens only
+//! off it (cactus min .466 -> .528, mean distance unchanged).
 //! Gauss-Seidel in a fixed order, run in parallel waves with the serial
 //! result (src/hex/gauss_seidel_schedule.h): deterministic whatever the number
 //! of threads.
@@ -48,8 +61,14 @@ struct RaiseMinScaledJacobianOptions {
   int sweeps = 20;               // at most this many sweeps (stops earlier when a sweep gains < 1e-4 on the minimum)
   bool free_boundary_for_inverted = true;  // last resort for elements still inverted (see above)
   double max_off_surface = 0.25; // last resort: how far a boundary vertex may leave the surface, fraction of its mean edge
-  double quality_threshold = 0.8; // then: sweeps as above over the hexahedra under this (the average rises) ...
-  int quality_sweeps = 3;         // ... at most this many (0: none)
+  double repair_below = 0.3;      // then, if at most repair_max_hexes hexahedra are under this, the last resort's joint
+  std::size_t repair_max_hexes = 16;  // repair lifts them (bounded: its cost grows with the patch; 0: never)
+  double quality_threshold = 1.0; // then: sweeps as above over the hexahedra under this (the average rises) ...
+  int quality_sweeps = 12;        // ... at most this many (0: none) ...
+  double quality_gain = 2e-4;     // ... stopping when one raises the average scaled Jacobian less than this (and not the minimum)
+  double loose_below = 0.5;       // in those sweeps, the boundary vertices of the hexahedra under this are loose: ...
+  double loose_attraction = 1.0;  // ... free within max_off_surface of their mean edge of the surface, energy plus
+                                  // loose_attraction x (distance / mean edge)^2 (0: every boundary vertex slides on the surface)
 };
 
 struct RaiseMinScaledJacobianReport {
@@ -57,6 +76,8 @@ struct RaiseMinScaledJacobianReport {
   std::size_t num_inverted_before = 0, num_inverted_after = 0;
   std::size_t num_moves = 0;              // accepted vertex moves
   std::size_t num_off_surface = 0;        // boundary vertices the last resort moved off the surface
+  std::size_t repaired_worst = 0;         // hexahedra under repair_below given the joint repair (0: none)
+  std::size_t num_loose_moved = 0;        // loose boundary vertices the quality sweeps moved (off the surface, most of them)
   int sweeps = 0;
   int untangle_steps = 0;                 // steps of the joint untangling (last resort)
 };
