@@ -366,9 +366,6 @@ std::vector<std::uint8_t> pinned_allowances(const Mesh& solid, const Feasibility
   return pinned;
 }
 
-//! Stage 1b of decompose(): the local repair of the features `infeasible`
-//! of result.canonical (4.3.5); replaces result.canonical by the repaired
-//! solid and sets result.repaired_input and result.repair.
 //! The thin-feature repair gave up at tolerance 0 (decompose() may then
 //! decompose within options.fallback_tolerance_fraction instead).
 class RepairGaveUp : public AlgorithmError {
@@ -376,6 +373,11 @@ class RepairGaveUp : public AlgorithmError {
   using AlgorithmError::AlgorithmError;
 };
 
+//! Stage 1b of decompose(): the local repair of the features `infeasible`
+//! of result.canonical (4.3.5); replaces result.canonical by the repaired
+//! solid and sets result.repaired_input and result.repair. Throws
+//! RepairGaveUp when the repair fails at tolerance 0, AlgorithmError within
+//! a tolerance.
 void repair_stage(const Mesh& input, const FeasibilityResult& infeasible, const DecomposeOptions& options,
                   DecomposeResult& result) {
   Progress* progress = options.progress;
@@ -722,9 +724,8 @@ DecomposeResult decompose_once(const Mesh& input, const DecomposeOptions& option
 
 DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
   check_options(options);
-  const double diagonal = bounding_box(input).diagonal();
-  const bool exact = std::min(options.tolerance_fraction * diagonal, options.tolerance_abs) == 0;
-  if (!exact || !(options.fallback_tolerance_fraction > 0) || !options.repair) return decompose_once(input, options);
+  // RepairGaveUp is thrown at tolerance 0 only, and only when options.repair
+  if (!(options.fallback_tolerance_fraction > 0)) return decompose_once(input, options);
   const auto start = Clock::now();
   try {
     return decompose_once(input, options);
