@@ -13,9 +13,16 @@ total, validate wall time and result per check, peak MB) and writes every row to
 a JSON file (--json-out). Rows of models not run this time can be carried over
 from an earlier JSON with --merge (so one model can be re-run alone).
 
+Within a tolerance (issue 17: "the same table for every closed model" at 1e-3
+and 5e-4), --tolerance F passes `--tolerance F` to every decompose; the table
+then gains the tolerance, the blocks' deviation bound (decompose's) and the
+number of blocks sticking out (filled), both from decomposition's --json, and
+validate's check 10 verdict.
+
 Usage: bench/run_sweep.py [--subfab build/subfab] [--out DIR] [--threads N]
                           [--only NAME ...] [--skip NAME ...] [--json-out FILE]
                           [--merge FILE] [--timeout S] [--no-validate]
+                          [--tolerance F]
 Long (tens of minutes): never run from the test suite. Models run one at a time.
 """
 import argparse
@@ -123,6 +130,9 @@ def run_one(args, run):
     outdir = os.path.join(args.out, slug(run["name"] + ("_" + "_".join(run["options"]) if run["options"] else "")))
     overhang = overhang_of(args, run)
     extra = ["--max-overhang", f"{overhang:g}"] if overhang else []
+    if args.tolerance is not None:
+        extra += ["--tolerance", f"{args.tolerance:g}"]
+        outdir += f"_t{args.tolerance:g}"
     cmd = [args.subfab, "decompose", mesh, "-o", outdir, "--json", "--quiet", "--threads", str(args.threads)] + \
         run["options"] + extra
     res = dict(run)
@@ -143,7 +153,8 @@ def run_one(args, run):
     res["blocks"] = summary.get("num_blocks")
     res["timings_s"] = summary.get("timings_s", {})
     for key in ("num_grown_boxes", "num_selected_boxes", "num_ordered_boxes", "num_cycle_splits", "num_merges",
-                "cover_optimal", "max_overhang_deg"):
+                "cover_optimal", "max_overhang_deg", "tolerance", "deviation_bound", "num_sticking_out",
+                "num_slivers"):
         if key in summary:
             res[key] = summary[key]
     if args.no_validate:
@@ -175,7 +186,11 @@ def fmt_t(x):
 
 def table(results):
     stages = ["orient", "field", "grow", "cover", "resolve", "carve"]
-    header = ["model", "settings", "exit", "blocks", "thesis"] + stages + \
+    within = any(r.get("tolerance") for r in results)
+    if within:
+        stages.append("tolerance")
+    header = ["model", "settings", "exit", "blocks", "thesis"] + \
+        (["deviation bound (x diag)", "filled blocks"] if within else []) + stages + \
         ["total", "validate (s)", "v.overlap (s)", "v.inside (s)"] + CHECK_NAMES + ["peak MB", "status"]
     lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
     for r in results:
@@ -190,8 +205,16 @@ def table(results):
         status = r["status"]
         if r.get("error") and status.startswith("FAIL"):
             status += ": " + r["error"][:160].replace("|", "/")
+        tol = r.get("tolerance")
+        extra_cells = []
+        if within:
+            frac = None
+            m = re.search(r"--tolerance (\S+)", r["settings"])
+            if tol and m and "deviation_bound" in r:
+                frac = r["deviation_bound"] / tol * float(m.group(1))  # tolerance = F x diagonal
+            extra_cells = ["" if frac is None else f"{frac:.2e}", str(r.get("num_sticking_out", ""))]
         cells = [r["name"], r["settings"], str(r["exit"]), str(r.get("blocks", "")),
-                 str(r.get("thesis_blocks", ""))] + [fmt_t(t.get(s)) for s in stages] + \
+                 str(r.get("thesis_blocks", ""))] + extra_cells + [fmt_t(t.get(s)) for s in stages] + \
             [fmt_t(t.get("total", r.get("wall_s") if r["exit"] != 0 else None)), fmt_t(r.get("validate_wall_s")),
              fmt_t(r.get("validate_times_s", {}).get("check: overlaps")),
              fmt_t(r.get("validate_times_s", {}).get("check: inside the input"))] + \
@@ -213,6 +236,9 @@ def main():
                     help="pass --max-overhang DEG to every decompose; 'thesis': each run's thesis blocks' own "
                          "steepest overhang (THESIS_OVERHANG_DEG; runs without one are skipped). validate "
                          "checks against the recorded allowance")
+    ap.add_argument("--tolerance", type=float, default=None,
+                    help="pass --tolerance F (fraction of the diagonal) to every decompose; validate then checks "
+                         "the recorded tolerance (check 10)")
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
     json_out = args.json_out or os.path.join(args.out, "sweep.json")
