@@ -5,6 +5,7 @@
 #include <cmath>
 #include <map>
 #include <set>
+#include <tuple>
 #include <vector>
 
 #include "subfab/checks/check_self_intersections.h"
@@ -69,11 +70,92 @@ void collapse(Mesh& machine, Mesh& block, SinglePrecisionCleanup& r) {
 
 std::size_t num_crossing(const Mesh& m) { return check_self_intersections(m, {.max_examples = 64}).num_offending; }
 
-}  // namespace
+//! Collapses the edges of `machine` shorter than `length`, shortest first
+//! (ties by vertex ids), each onto its lower-id end, when the collapse keeps
+//! a closed 2-manifold: the two ends share exactly the two vertices opposite
+//! the edge (the link condition) and more than four vertices remain. The
+//! same collapses apply to `block` (same ids). Faces of the edge go; returns
+//! the number of collapses. Sub-float clusters of vertices (box planes
+//! cutting the surface within 1e-8 of each other) weld in float32 as a
+//! whole; merging only the vertices that round to the same float point can
+//! pinch the surface, collapsing edges cannot.
+std::size_t collapse_short_edges(Mesh& machine, Mesh& block, double length, SinglePrecisionCleanup& r) {
+  const std::size_t nv = machine.num_vertices();
+  std::vector<std::vector<std::size_t>> faces_of(nv);
+  std::vector<char> alive(machine.num_faces(), 1);
+  for (std::size_t f = 0; f < machine.num_faces(); ++f)
+    for (int v : machine.faces[f]) faces_of[static_cast<std::size_t>(v)].push_back(f);
+  struct Edge {
+    double length;
+    int a, b;
+    bool operator<(const Edge& o) const { return std::tie(length, a, b) < std::tie(o.length, o.a, o.b); }
+  };
+  std::vector<Edge> edges;
+  for (const Triangle& t : machine.faces)
+    for (int k = 0; k < 3; ++k) {
+      const int a = std::min(t[k], t[(k + 1) % 3]), b = std::max(t[k], t[(k + 1) % 3]);
+      const double l = (machine.vertices[static_cast<std::size_t>(a)] - machine.vertices[static_cast<std::size_t>(b)]).norm();
+      if (l < length) edges.push_back({l, a, b});
+    }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end(), [](const Edge& x, const Edge& y) { return x.a == y.a && x.b == y.b; }),
+              edges.end());
+  std::size_t remaining = 0;
+  for (std::size_t v = 0; v < nv; ++v) remaining += faces_of[v].empty() ? 0 : 1;
+  std::size_t collapsed = 0;
+  const auto neighbours = [&](int v) {
+    std::set<int> out;
+    for (std::size_t f : faces_of[static_cast<std::size_t>(v)])
+      if (alive[f])
+        for (int w : machine.faces[f])
+          if (w != v) out.insert(w);
+    return out;
+  };
+  for (const Edge& e : edges) {
+    if (remaining <= 4) break;
+    // the faces holding both ends (none when an earlier collapse took the edge)
+    std::vector<std::size_t> shared;
+    std::set<int> opposite;
+    for (std::size_t f : faces_of[static_cast<std::size_t>(e.a)]) {
+      if (!alive[f]) continue;
+      const Triangle& t = machine.faces[f];
+      if (std::find(t.begin(), t.end(), e.b) == t.end()) continue;
+      shared.push_back(f);
+      for (int w : t)
+        if (w != e.a && w != e.b) opposite.insert(w);
+    }
+    if (shared.size() != 2 || opposite.size() != 2) continue;
+    const std::set<int> na = neighbours(e.a), nb = neighbours(e.b);
+    std::vector<int> common;
+    std::set_intersection(na.begin(), na.end(), nb.begin(), nb.end(), std::back_inserter(common));
+    if (common.size() != 2) continue;  // link condition
+    for (std::size_t f : shared) alive[f] = 0;
+    for (std::size_t f : faces_of[static_cast<std::size_t>(e.b)]) {
+      if (!alive[f]) continue;
+      for (int& w : machine.faces[f])
+        if (w == e.b) w = e.a;
+      faces_of[static_cast<std::size_t>(e.a)].push_back(f);
+    }
+    faces_of[static_cast<std::size_t>(e.b)].clear();
+    --remaining;
+    ++collapsed;
+    r.num_faces_removed += 2;
+  }
+  if (collapsed == 0) return 0;
+  std::vector<Triangle> kept;
+  for (std::size_t f = 0; f < machine.num_faces(); ++f)
+    if (alive[f]) kept.push_back(machine.faces[f]);
+  machine.faces = std::move(kept);
+  block.faces = machine.faces;
+  remove_unreferenced_vertices(block);  // same order as in machine: unreferenced ids are the same
+  remove_unreferenced_vertices(machine);
+  r.num_collapsed += collapsed;
+  return collapsed;
+}
 
-SinglePrecisionCleanup clean_single_precision(Mesh& machine, Mesh& block) {
-  SinglePrecisionCleanup r;
-  if (check_single_precision(machine).ok()) return r;
+//! Rounds `machine` to float32 and repairs what the rounding broke (see
+//! clean_single_precision()).
+void round_and_repair(Mesh& machine, Mesh& block, SinglePrecisionCleanup& r) {
   std::vector<Vec3> exact = machine.vertices;  // before rounding, for the other rounding
   for (Vec3& v : machine.vertices) v = Vec3(to_float(v.x()), to_float(v.y()), to_float(v.z()));
   collapse(machine, block, r);
@@ -109,7 +191,29 @@ SinglePrecisionCleanup clean_single_precision(Mesh& machine, Mesh& block) {
     }
   }
   r.ok = check_single_precision(machine).ok();
-  return r;
+}
+
+}  // namespace
+
+SinglePrecisionCleanup clean_single_precision(Mesh& machine, Mesh& block) {
+  SinglePrecisionCleanup r;
+  if (check_single_precision(machine).ok()) return r;
+  const Mesh machine_before = machine, block_before = block;
+  round_and_repair(machine, block, r);
+  if (r.ok) return r;
+  // Clusters of vertices closer than a few float spacings: collapse their
+  // edges first (in double), then round again; kept when that gives a solid.
+  double magnitude = 0;
+  for (const Vec3& v : machine_before.vertices) magnitude = std::max(magnitude, v.cwiseAbs().maxCoeff());
+  const double spacing = magnitude * std::ldexp(1.0, -23);  // float32's spacing at the largest coordinate (upper bound)
+  SinglePrecisionCleanup again;
+  Mesh machine2 = machine_before, block2 = block_before;
+  if (collapse_short_edges(machine2, block2, 4 * spacing, again) == 0) return r;
+  round_and_repair(machine2, block2, again);
+  if (!again.ok) return r;
+  machine = std::move(machine2);
+  block = std::move(block2);
+  return again;
 }
 
 }  // namespace subfab::detail
