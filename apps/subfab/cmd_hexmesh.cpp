@@ -99,6 +99,12 @@ nlohmann::ordered_json to_json(const HexmeshArgs& args, const Mesh& input, const
                      {"boundary_vertices_off_surface", r.raise.num_off_surface},
                      {"repaired_worst", r.raise.repaired_worst},
                      {"loose_boundary_vertices_moved", r.raise.num_loose_moved}};
+  j["pull_boundary"] = {{"off_surface_before", r.pull.off_before},
+                        {"off_surface_after", r.pull.off_after},
+                        {"max_off_before_fraction", r.diagonal > 0 ? r.pull.max_off_before / r.diagonal : 0.0},
+                        {"max_off_after_fraction", r.diagonal > 0 ? r.pull.max_off_after / r.diagonal : 0.0},
+                        {"moves", r.pull.moves},
+                        {"sweeps", r.pull.sweeps}};
   j["diagonal"] = r.diagonal;
   j["mean_distance_fraction"] = r.diagonal > 0 ? r.mean_distance / r.diagonal : 0.0;
   j["max_distance_fraction"] = r.diagonal > 0 ? r.max_distance / r.diagonal : 0.0;

@@ -1,12 +1,14 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //! \file hex_optimizers.h
-//! Private: optimize_hex_mesh() and raise_min_scaled_jacobian() on a surface
+//! Private: optimize_hex_mesh(), raise_min_scaled_jacobian() and
+//! pull_boundary_to_surface() on a surface
 //! whose projector (AABB tree and exact inside test) is already built, so
 //! that hexmesh() builds it once instead of once per level.
 #pragma once
 
 #include "hex/surface_projector.h"
 #include "subfab/hex/optimize_hex_mesh.h"
+#include "subfab/hex/pull_boundary_to_surface.h"
 #include "subfab/hex/raise_min_scaled_jacobian.h"
 
 namespace subfab::detail {
@@ -16,5 +18,8 @@ OptimizeHexMeshReport optimize_hex_mesh(HexMesh& mesh, const SurfaceProjector& s
 
 RaiseMinScaledJacobianReport raise_min_scaled_jacobian(HexMesh& mesh, const SurfaceProjector& surface,
                                                        const RaiseMinScaledJacobianOptions& options);
+
+PullBoundaryReport pull_boundary_to_surface(HexMesh& mesh, const SurfaceProjector& surface,
+                                            const PullBoundaryOptions& options);
 
 }  // namespace subfab::detail

@@ -280,6 +280,11 @@ HexMeshResult hexmesh(const Mesh& surface, const Skeleton* skeleton, const HexMe
     r.raise = detail::raise_min_scaled_jacobian(mesh, projector, options.raise);
   }
   timer.lap("raise worst elements");
+  if (options.pull_boundary) {
+    StageScope stage(progress, "pull boundary to surface");
+    r.pull = detail::pull_boundary_to_surface(mesh, projector, options.pull);
+  }
+  timer.lap("pull boundary");
   {
     StageScope stage(progress, "measure");
     r.mesh = std::move(mesh);

@@ -47,12 +47,41 @@ bool neck_inside(const Polyline& line, double a, double b, double neck) {
   return false;
 }
 
-void split(const Polyline& line, double a, double b, int depth, bool force, double neck, std::vector<double>& out) {
-  if (depth <= 0 || (!force && !spheres_apart(line, a, b) && !neck_inside(line, a, b, neck))) return;
+//! A bend between the samples: a node of the polyline strictly inside
+//! (a, b) farther than bend x min(r_a, r_b) from the chord joining the
+//! samples (the straight tube between them would cut the bend's inside).
+bool bend_inside(const Polyline& line, double a, double b, double bend) {
+  if (!(bend > 0)) return false;
+  Vec3 pa, pb;
+  double ra, rb;
+  line.at(a, pa, ra);
+  line.at(b, pb, rb);
+  const double limit = bend * std::min(ra, rb);
+  const Vec3 ab = pb - pa;
+  const double len2 = ab.squaredNorm();
+  for (std::size_t i = 0; i < line.t.size(); ++i) {
+    if (!(line.t[i] > a && line.t[i] < b)) continue;
+    const Vec3 ap = line.points[i] - pa;
+    const double s = len2 > 0 ? std::clamp(ap.dot(ab) / len2, 0.0, 1.0) : 0.0;
+    if ((ap - s * ab).norm() > limit) return true;
+  }
+  return false;
+}
+
+struct SplitCriteria {
+  double neck = 0;
+  double bend = 0;
+};
+
+void split(const Polyline& line, double a, double b, int depth, bool force, const SplitCriteria& c,
+           std::vector<double>& out) {
+  if (depth <= 0 || (!force && !spheres_apart(line, a, b) && !neck_inside(line, a, b, c.neck) &&
+                     !bend_inside(line, a, b, c.bend)))
+    return;
   const double m = 0.5 * (a + b);
-  split(line, a, m, depth - 1, false, neck, out);
+  split(line, a, m, depth - 1, false, c, out);
   out.push_back(m);
-  split(line, m, b, depth - 1, false, neck, out);
+  split(line, m, b, depth - 1, false, c, out);
 }
 
 }  // namespace
@@ -76,15 +105,19 @@ Skeleton resample_skeleton(const Skeleton& skeleton, const ResampleSkeletonOptio
     }
     for (double& t : line.t) t = length > 0 ? t / length : 0.0;
     std::vector<double> samples;
+    // the bend criterion only on loops (an arc back to its own start, or a
+    // cycle): see the header
+    const bool loop = arc.closed || arc.nodes.front() == arc.nodes.back();
+    const SplitCriteria criteria{options.neck_ratio, loop ? options.bend_ratio : 0.0};
     if (arc.closed) {  // at least two inner nodes: a cycle of three or more
       const double third = 1.0 / 3.0;
-      split(line, 0, third, options.max_depth, false, options.neck_ratio, samples);
+      split(line, 0, third, options.max_depth, false, criteria, samples);
       samples.push_back(third);
-      split(line, third, 2 * third, options.max_depth, false, options.neck_ratio, samples);
+      split(line, third, 2 * third, options.max_depth, false, criteria, samples);
       samples.push_back(2 * third);
-      split(line, 2 * third, 1, options.max_depth, false, options.neck_ratio, samples);
+      split(line, 2 * third, 1, options.max_depth, false, criteria, samples);
     } else {
-      split(line, 0, 1, options.max_depth, true, options.neck_ratio, samples);
+      split(line, 0, 1, options.max_depth, true, criteria, samples);
     }
     int first = new_index[static_cast<std::size_t>(arc.nodes.front())];
     if (first < 0) {  // closed cycle: its start node is of degree 2

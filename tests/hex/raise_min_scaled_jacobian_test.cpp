@@ -20,19 +20,8 @@
 namespace subfab {
 namespace {
 
-double min_sj(const HexMesh& m) {
-  const auto sj = scaled_jacobians(m);
-  return *std::min_element(sj.begin(), sj.end());
-}
-
-//! n x n x n unit hexahedra filling the cube [0,n]^3; vertex (i,j,k).
-struct Grid {
-  explicit Grid(int n) : n(n), mesh(test::hex_grid(n, n, n)), surface(test::cube(Vec3::Zero(), n)) {}
-  std::size_t id(int i, int j, int k) const { return static_cast<std::size_t>(i + (n + 1) * (j + (n + 1) * k)); }
-  int n;
-  HexMesh mesh;
-  Mesh surface;
-};
+using test::min_sj;
+using Grid = test::GridInCube;
 
 TEST(RaiseMinScaledJacobian, UntanglesAnInteriorVertexPushedThroughItsNeighbours) {
   Grid g(3);

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 
 #include "support/hex_test_shapes.h"
 
@@ -40,6 +41,42 @@ TEST(ResampleSkeleton, NeckBetweenSamplesIsSplitOnlyWhenAsked) {
   bool at_neck = false;
   for (std::size_t v = 0; v < r.num_nodes(); ++v) at_neck = at_neck || std::abs(r.points[v].x() - 0.5) < 1e-9;
   EXPECT_TRUE(at_neck);
+}
+
+
+// Regression (issue 14, rocker arm): the spheres of a loop as thick as its
+// bend overlap across the hole, so D.4's criterion alone kept three samples
+// on the rocker arm's loop, whose straight tubes cut across its hole (hex
+// boundary vertices 0.095 of the diagonal from the surface). A ring of
+// radius 2, tube radius 2: the thirds' ends are 2 apart (under 2 + 2: D.4
+// does not split), their chords stray 2 (1 - cos 60) = 1 from the ring, more
+// than 0.25 x 2: split; the sixths' chords 0.27, under 0.5: kept.
+TEST(ResampleSkeleton, LoopIsSplitUntilItsChordsFollowIt) {
+  const Skeleton s = test::ring_skeleton(64, 2.0, 2.0);
+  ResampleSkeletonOptions plain;
+  plain.bend_ratio = 0;
+  EXPECT_EQ(resample_skeleton(s, plain).num_nodes(), 3u);
+  const Skeleton r = resample_skeleton(s);  // bend_ratio 0.25 by default
+  ASSERT_EQ(r.num_nodes(), 6u);
+  for (std::size_t v = 0; v < r.num_nodes(); ++v) EXPECT_NEAR(r.points[v].norm(), 2.0, 3e-3);  // on the 64-gon
+  const auto arcs = skeleton_arcs(r);
+  ASSERT_EQ(arcs.size(), 1u);
+  EXPECT_TRUE(arcs[0].closed);
+}
+
+// The bend criterion is for loops only: on open arcs it split the wiggles of
+// the computed skeletons into short, thick layers (cactus got inverted
+// elements, bob's minimum fell from .66 to .16). A half circle of radius 2,
+// tube radius 1: D.4 splits it once (the midpoint is 2.83 from the ends, the
+// quarters 1.53 from them, under 1 + 1), though a half's chord strays 0.59.
+TEST(ResampleSkeleton, OpenArcIsNotSplitForItsBend) {
+  Skeleton s;
+  for (int i = 0; i <= 32; ++i) {
+    const double a = std::numbers::pi * (1.0 - i / 32.0);
+    s.add_node(Vec3(2 * std::cos(a), 2 * std::sin(a), 0), 1.0);
+    if (i > 0) s.add_edge(i - 1, i);
+  }
+  EXPECT_EQ(resample_skeleton(s).num_nodes(), 3u);
 }
 
 TEST(ResampleSkeleton, ThickTubeKeepsOneInnerNode) {

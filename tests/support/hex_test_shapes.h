@@ -5,9 +5,13 @@
 #include <cmath>
 #include <numbers>
 
+#include <algorithm>
+
 #include "subfab/hex/hex_mesh.h"
+#include "subfab/hex/scaled_jacobian.h"
 #include "subfab/hex/skeleton.h"
 #include "subfab/mesh/mesh.h"
+#include "support/test_shapes.h"
 
 namespace subfab::test {
 
@@ -107,5 +111,21 @@ inline HexMesh unit_hex_cube() {
   m.hexes = {{0, 1, 2, 3, 4, 5, 6, 7}};
   return m;
 }
+
+//! Worst scaled Jacobian of a mesh.
+inline double min_sj(const HexMesh& m) {
+  const auto sj = scaled_jacobians(m);
+  return *std::min_element(sj.begin(), sj.end());
+}
+
+//! n x n x n unit hexahedra filling the cube [0,n]^3, its surface the cube;
+//! vertex (i,j,k).
+struct GridInCube {
+  explicit GridInCube(int n) : n(n), mesh(hex_grid(n, n, n)), surface(cube(Vec3::Zero(), n)) {}
+  std::size_t id(int i, int j, int k) const { return static_cast<std::size_t>(i + (n + 1) * (j + (n + 1) * k)); }
+  int n;
+  HexMesh mesh;
+  Mesh surface;
+};
 
 }  // namespace subfab::test
