@@ -1,12 +1,14 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //! \file hex_optimizers.h
-//! Private: optimize_hex_mesh() and raise_min_scaled_jacobian() on a surface
+//! Private: optimize_hex_mesh(), raise_min_scaled_jacobian() and
+//! raise_mean_scaled_jacobian() on a surface
 //! whose projector (AABB tree and exact inside test) is already built, so
 //! that hexmesh() builds it once instead of once per level.
 #pragma once
 
 #include "hex/surface_projector.h"
 #include "subfab/hex/optimize_hex_mesh.h"
+#include "subfab/hex/raise_mean_scaled_jacobian.h"
 #include "subfab/hex/raise_min_scaled_jacobian.h"
 
 namespace subfab::detail {
@@ -16,5 +18,8 @@ OptimizeHexMeshReport optimize_hex_mesh(HexMesh& mesh, const SurfaceProjector& s
 
 RaiseMinScaledJacobianReport raise_min_scaled_jacobian(HexMesh& mesh, const SurfaceProjector& surface,
                                                        const RaiseMinScaledJacobianOptions& options);
+
+RaiseMeanScaledJacobianReport raise_mean_scaled_jacobian(HexMesh& mesh, const SurfaceProjector& surface,
+                                                         const RaiseMeanScaledJacobianOptions& options);
 
 }  // namespace subfab::detail

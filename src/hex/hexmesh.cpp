@@ -280,6 +280,11 @@ HexMeshResult hexmesh(const Mesh& surface, const Skeleton* skeleton, const HexMe
     r.raise = detail::raise_min_scaled_jacobian(mesh, projector, options.raise);
   }
   timer.lap("raise worst elements");
+  if (options.raise_mean) {
+    StageScope stage(progress, "raise average quality");
+    r.mean = detail::raise_mean_scaled_jacobian(mesh, projector, options.mean);
+  }
+  timer.lap("raise average quality");
   {
     StageScope stage(progress, "measure");
     r.mesh = std::move(mesh);

@@ -45,6 +45,7 @@
 #include "subfab/hex/control_resolution.h"
 #include "subfab/hex/hex_mesh.h"
 #include "subfab/hex/optimize_hex_mesh.h"
+#include "subfab/hex/raise_mean_scaled_jacobian.h"
 #include "subfab/hex/raise_min_scaled_jacobian.h"
 #include "subfab/hex/resample_skeleton.h"
 #include "subfab/hex/skeleton.h"
@@ -62,6 +63,8 @@ struct HexMeshOptions {
   OptimizeHexMeshOptions optimize;
   bool raise_min = true;             // run raise_min_scaled_jacobian() on the final level
   RaiseMinScaledJacobianOptions raise;
+  bool raise_mean = true;            // then raise_mean_scaled_jacobian() (the average, the minimum kept)
+  RaiseMeanScaledJacobianOptions mean;
   Progress* progress = nullptr;
 };
 
@@ -84,6 +87,7 @@ struct HexMeshResult {
   double mean_distance = 0, max_distance = 0;  // boundary vs input, model units (see hexmesh.cpp)
   OptimizeHexMeshReport optimize;
   RaiseMinScaledJacobianReport raise;
+  RaiseMeanScaledJacobianReport mean;
   std::vector<std::pair<std::string, double>> timings;  // seconds per stage
 };
 
