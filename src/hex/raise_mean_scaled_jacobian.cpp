@@ -37,6 +37,7 @@ class MeanRaiser {
     const std::size_t n = mesh.vertices.size();
     scale_.assign(n, 0.0);
     step_.assign(n, 0.0);
+    last_move_.assign(n, 0);
     origin_ = mesh.vertices;
     allowance_.assign(n, -1.0);
     for (std::size_t v = 0; v < n; ++v) {
@@ -57,10 +58,11 @@ class MeanRaiser {
   void set_floor(double floor) { floor_ = floor; }
 
   //! Visits v (see the header); returns the number of accepted steps.
-  std::size_t visit(std::size_t v) {
+  std::size_t visit(std::size_t v, int sweep) {
     const double scale = scale_[v];
     if (!(scale > 0)) return 0;
     if (topo_.on_boundary[v] && !options_.slide_boundary) return 0;
+    if (!active(v, sweep)) return 0;
     thread_local detail::VertexStar st;
     thread_local std::vector<double> bound;  // per hexahedron of v: the scaled Jacobian a move must keep
     detail::build_vertex_star(st, mesh_, topo_.vertex_hexes[v], v, options_.sharpness, &cache_);
@@ -76,13 +78,7 @@ class MeanRaiser {
     std::size_t moves = 0;
     for (int it = 0; it < options_.moves_per_visit; ++it) {
       const Vec3 p = mesh_.vertices[v];
-      const double h = 1e-5 * scale;
-      Vec3 grad;
-      for (int a = 0; a < 3; ++a) {
-        Vec3 d = Vec3::Zero();
-        d[a] = h;
-        grad[a] = (energy_at(st, p + d, nullptr).energy - current) / h;  // forward: `current` is E(p)
-      }
+      Vec3 grad = gradient_at(st, p);
       if (slides) {
         Vec3 normal;
         surface_.closest_point(p, &normal);
@@ -132,6 +128,7 @@ class MeanRaiser {
       }
     }
     if (moves > 0) detail::store_star(mesh_, st, cache_);
+    if ((mesh_.vertices[v] - start).norm() > options_.active_move * scale) last_move_[v] = sweep;
     return moves;
   }
 
@@ -146,6 +143,19 @@ class MeanRaiser {
     if (free_near && (surface_.closest_point(q) - q).norm() > allowance_[v]) return false;
     out = q;
     return true;
+  }
+
+  //! Whether v is visited in `sweep` (from 1): always in the first; then
+  //! only if a vertex of its hexahedra (v included) moved by more than
+  //! active_move of its mean edge in this sweep (visited before v) or the
+  //! previous one. Reads only the vertices of v's hexahedra, which the waves
+  //! order as the serial sweep does: deterministic.
+  bool active(std::size_t v, int sweep) const {
+    if (sweep <= 1) return true;
+    for (int h : topo_.vertex_hexes[v])
+      for (int w : mesh_.hexes[idx(h)])
+        if (last_move_[idx(w)] >= sweep - 1) return true;
+    return false;
   }
 
   struct Value {
@@ -180,12 +190,56 @@ class MeanRaiser {
     return {e / beta, valid};
   }
 
+  //! The gradient of v's part of E with respect to v's position, at p:
+  //! dE/dv = -sum over moved corners of w dalpha/dv, w = exp(-beta alpha) /
+  //! sum over its hexahedron's corners of exp(-beta alpha'); a corner's
+  //! derivative along its unit edge u from v (length L) to a neighbour is
+  //! -(I - u u^T) / L times the cofactor of that edge (e1 x e2 for e0 ...),
+  //! gathered per neighbour first. Degenerate corners (constant -1) add 0.
+  Vec3 gradient_at(const detail::VertexStar& st, const Vec3& p) {
+    const Vec3 old = mesh_.vertices[st.v];
+    mesh_.vertices[st.v] = p;
+    detail::evaluate_star(mesh_, st);
+    mesh_.vertices[st.v] = old;
+    thread_local std::vector<Vec3> gathered;  // per neighbour: sum of sign x w x cofactor
+    gathered.assign(st.neighbours.size(), Vec3::Zero());
+    const double beta = options_.sharpness;
+    for (std::size_t j = 0; j < st.hexes->size(); ++j) {
+      double sum = 0;
+      for (std::size_t i = 0; i < 8; ++i) {
+        const int c = st.slot[8 * j + i];
+        sum += c < 0 ? st.fixed_exp[8 * j + i] : std::exp(-beta * st.values[idx(c)]);
+      }
+      for (std::size_t i = 0; i < 8; ++i) {
+        const int c = st.slot[8 * j + i];
+        if (c < 0) continue;
+        const detail::VertexStar::Moved& m = st.moved[idx(c)];
+        Vec3 e[3];
+        if (!detail::star_corner_edges(st, idx(c), e)) continue;
+        const double w = std::exp(-beta * st.values[idx(c)]) / sum;
+        const Vec3 cofactor[3] = {e[1].cross(e[2]), e[2].cross(e[0]), e[0].cross(e[1])};
+        for (std::size_t k = 0; k < 3; ++k)
+          if (m.neighbour[k] >= 0) gathered[idx(m.neighbour[k])] += (m.sign[k] * w) * cofactor[k];
+      }
+    }
+    Vec3 grad = Vec3::Zero();
+    for (std::size_t s = 0; s < st.neighbours.size(); ++s) {
+      if (st.zero[s]) continue;
+      const Vec3& u = st.units[s];
+      const double length = (mesh_.vertices[idx(st.neighbours[s])] - p).norm();
+      // dE/dv = -sum w dalpha/dv, dalpha/dv = sum sign (-(I - u u^T) / L) cofactor
+      grad += (gathered[s] - u * u.dot(gathered[s])) / length;
+    }
+    return grad;
+  }
+
   HexMesh& mesh_;
   const detail::SurfaceProjector& surface_;
   const RaiseMeanScaledJacobianOptions& options_;
   detail::HexTopology topo_;
   std::vector<double> scale_;      // per vertex: mean edge length at the start
   std::vector<Vec3> origin_;       // per vertex: its position at the start (a sliding vertex stays within max_slide)
+  std::vector<int> last_move_;     // per vertex: the last sweep in which it moved by more than active_move (0: none)
   std::vector<double> step_;       // per vertex: length of its last accepted step (visit writes only its own)
   std::vector<double> allowance_;  // per boundary vertex: 0 on the surface (slides), else its distance (never farther)
   double floor_ = 0;
@@ -213,7 +267,7 @@ RaiseMeanScaledJacobianReport detail::raise_mean_scaled_jacobian(HexMesh& mesh, 
   int stalled = 0;
   while (report.sweeps < options.max_sweeps && stalled < kPatience) {
     ++report.sweeps;
-    detail::run_waves(waves, [&](std::size_t v) { moved[v] = raiser.visit(v); });
+    detail::run_waves(waves, [&](std::size_t v) { moved[v] = raiser.visit(v, report.sweeps); });
     for (std::size_t m : moved) report.num_moves += m;
     q = raiser.qualities();
     const double avg = average(q);

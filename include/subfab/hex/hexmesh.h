@@ -30,6 +30,9 @@
 //!   7. raise_min_scaled_jacobian() on the final level: local optimisation of
 //!      the worst elements, boundary sliding on the surface; elements still
 //!      inverted are untangled jointly, their boundary free near the surface;
+//!   7b. raise_mean_scaled_jacobian(): the average up (a smooth soft-min
+//!      energy over every hexahedron), no hexahedron under min(its value,
+//!      0.5), boundary sliding on the surface;
 //!   8. measures: conformity, scaled Jacobians, distance to the input.
 #pragma once
 

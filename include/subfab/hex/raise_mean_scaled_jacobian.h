@@ -12,23 +12,29 @@
 //! Jacobian of h is min_c alpha_c; softmin_beta tends to it as beta grows,
 //! and is smooth, so a descent direction exists where the min has a kink).
 //! Nonlinear Gauss-Seidel, in sweeps over every vertex (index order):
-//!   1. the vertex's part of E (its hexahedra), its gradient by central
-//!      differences; a boundary vertex on the surface takes the gradient's
-//!      tangent part and every trial point is put back onto the surface
-//!      (closest point): it slides on the input; a boundary vertex already off
-//!      the surface (left there by the last resort or the loose vertices of
-//!      raise_min_scaled_jacobian) moves freely but never farther from it;
-//!   2. a line search (halving from a quarter of its mean edge, then the
-//!      minimum of the parabola through the two values and the slope), at most
-//!      `moves_per_visit` times;
+//!   1. the vertex's part of E (its hexahedra) and its analytic gradient; a
+//!      boundary vertex on the surface takes the gradient's tangent part and
+//!      every trial point is put back onto the surface (closest point): it
+//!      slides on the input, within `max_slide` of its mean edge of where it
+//!      started; a boundary vertex already off the surface (left there by
+//!      raise_min_scaled_jacobian's last resort or loose vertices) moves
+//!      freely but never farther from it;
+//!   2. a line search (halving from twice the vertex's last step, then the
+//!      minimum of the parabola through E(0), E'(0) and E(t)), at most
+//!      `moves_per_visit` times; then the visit's displacement times
+//!      `over_relaxation` (nonlinear SOR: Gauss-Seidel alone is slow on the
+//!      smooth part of the error) if that is valid and still lowers E;
 //!   3. a move is accepted only if every hexahedron h of the vertex keeps
 //!      scaled Jacobian >= min(its value before the move, floor), floor =
 //!      max(`floor`, the mesh's minimum at the start): the minimum of the
 //!      mesh never drops and nothing becomes inverted.
-//! Stops when a sweep raises the average scaled Jacobian by less than
-//! `min_gain`, or after `max_sweeps`. Run in parallel waves with the result
-//! of the serial sweep (src/hex/gauss_seidel_schedule.h): deterministic
-//! whatever the number of threads.
+//! After the first sweep a vertex is visited only when a vertex of its
+//! hexahedra moved by more than `active_move` of its mean edge in the last
+//! sweep. Stops after two sweeps in a row that raise the best average scaled
+//! Jacobian by less than `min_gain`, or after `max_sweeps`; the positions
+//! with the best average are kept. Run in parallel waves with the result of
+//! the serial sweep (src/hex/gauss_seidel_schedule.h): deterministic
+//! whatever the number of threads. docs/hexmesh.md, "Average pass".
 #pragma once
 
 #include <cstddef>
@@ -42,10 +48,12 @@ struct RaiseMeanScaledJacobianOptions {
   double sharpness = 20.0;   // beta of the per-hexahedron soft minimum of its 8 corner determinants (dimensionless)
   double floor = 0.5;        // a move may lower a hexahedron's scaled Jacobian, but not under this (nor under the
                              // mesh's minimum; a hexahedron already under it may only rise)
-  int max_sweeps = 20;       // sweeps over every vertex, at most
-  double min_gain = 2e-4;    // stop when a sweep raises the average scaled Jacobian by less than this
-  int moves_per_visit = 2;   // line searches per vertex visit
+  int max_sweeps = 25;       // sweeps over every vertex, at most
+  double min_gain = 2e-4;    // stop when two sweeps in a row raise the best average scaled Jacobian by less than this
+  int moves_per_visit = 1;   // line searches per vertex visit (2 or 3: the same quality per unit of time)
   double over_relaxation = 1.8;  // the visit's displacement times this, if still valid and lower (1: plain Gauss-Seidel)
+  double active_move = 1e-3;  // after the first sweep, a vertex is visited only if a vertex of its hexahedra moved
+                              // by more than this fraction of its mean edge in the last sweep (0: every vertex)
   bool slide_boundary = true;  // boundary vertices slide on the surface (false: they stay where they are) ...
   double max_slide = 0.1;      // ... at most this far from where they were, fraction of their mean edge
 };
