@@ -31,6 +31,7 @@ struct HexmeshArgs {
   std::string skeleton;
   bool scaling = false;
   bool no_scaling = false;
+  bool no_mean_pass = false;
   bool no_view = false;
   int subdivisions = -1;
   std::size_t max_hexes = HexMeshOptions{}.max_hexes;
@@ -105,6 +106,11 @@ nlohmann::ordered_json to_json(const HexmeshArgs& args, const Mesh& input, const
                         {"max_off_after_fraction", r.diagonal > 0 ? r.pull.max_off_after / r.diagonal : 0.0},
                         {"moves", r.pull.moves},
                         {"sweeps", r.pull.sweeps}};
+  j["mean_pass"] = {{"enabled", !args.no_mean_pass},
+                    {"avg_before", r.mean.avg_before},
+                    {"min_before", r.mean.min_before},
+                    {"moves", r.mean.num_moves},
+                    {"sweeps", r.mean.sweeps}};
   j["diagonal"] = r.diagonal;
   j["mean_distance_fraction"] = r.diagonal > 0 ? r.mean_distance / r.diagonal : 0.0;
   j["max_distance_fraction"] = r.diagonal > 0 ? r.max_distance / r.diagonal : 0.0;
@@ -142,6 +148,7 @@ int run_hexmesh(const HexmeshArgs& args) {
   options.subdivisions = args.subdivisions;
   options.resolution_control = !args.no_scaling;
   options.max_hexes = args.max_hexes;
+  options.raise_mean = !args.no_mean_pass;
   HexMeshResult result;
   try {
     result = hexmesh(mesh, args.skeleton.empty() ? nullptr : &skeleton, options);
@@ -212,6 +219,9 @@ void add_hexmesh_options(CLI::App& sub, HexmeshArgs& args) {
   sub.add_flag("--no-scaling", args.no_scaling,
                "No resolution control (D.5): every hexahedron is split the same number of times")
       ->excludes(scaling);
+  sub.add_flag("--no-mean-pass", args.no_mean_pass,
+               "Skip the last stage that raises the average scaled Jacobian (raise_mean_scaled_jacobian, the "
+               "minimum kept); for comparison");
   sub.add_flag("--no-view", args.no_view,
                "Do not write OUTDIR/view.html (the cells coloured by scaled Jacobian in 3D in a browser)");
   sub.add_option("--subdivisions", args.subdivisions,

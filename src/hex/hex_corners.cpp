@@ -175,18 +175,8 @@ void evaluate_star(const HexMesh& mesh, const VertexStar& st) {
     st.units[s] = e;
   }
   for (std::size_t c = 0; c < st.moved.size(); ++c) {
-    const VertexStar::Moved& m = st.moved[c];
     Vec3 e[3];
-    bool degenerate = m.degenerate;
-    for (std::size_t k = 0; k < 3; ++k) {
-      if (m.neighbour[k] < 0) {
-        e[k] = m.fixed[k];
-      } else {
-        degenerate = degenerate || st.zero[idx(m.neighbour[k])];
-        e[k] = m.sign[k] > 0 ? st.units[idx(m.neighbour[k])] : Vec3(-st.units[idx(m.neighbour[k])]);
-      }
-    }
-    st.values[c] = degenerate ? -1.0 : e[0].dot(e[1].cross(e[2]));
+    st.values[c] = star_corner_edges(st, c, e) ? e[0].dot(e[1].cross(e[2])) : -1.0;
   }
 }
 

@@ -92,6 +92,24 @@ void store_star(const HexMesh& mesh, const VertexStar& star, CornerCache& cache)
 //! (== scaled_jacobians(mesh) when the cache is up to date).
 std::vector<double> hex_qualities(const CornerCache& cache);
 
+//! The three unit edges of the star's moved corner c, with the edges at v
+//! from star.units (after evaluate_star(), or as evaluate_star() sets them);
+//! false when the corner is degenerate (an edge of zero length: value -1).
+inline bool star_corner_edges(const VertexStar& star, std::size_t c, Vec3 e[3]) {
+  const VertexStar::Moved& m = star.moved[c];
+  bool degenerate = m.degenerate;
+  for (std::size_t k = 0; k < 3; ++k) {
+    if (m.neighbour[k] < 0) {
+      e[k] = m.fixed[k];
+    } else {
+      const auto s = static_cast<std::size_t>(m.neighbour[k]);
+      degenerate = degenerate || star.zero[s];
+      e[k] = m.sign[k] > 0 ? star.units[s] : Vec3(-star.units[s]);
+    }
+  }
+  return !degenerate;
+}
+
 //! Fills star.values for v at its current position in `mesh`.
 void evaluate_star(const HexMesh& mesh, const VertexStar& star);
 

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //! \file hex_optimizers.h
-//! Private: optimize_hex_mesh(), raise_min_scaled_jacobian() and
-//! pull_boundary_to_surface() on a surface
+//! Private: optimize_hex_mesh(), raise_min_scaled_jacobian(),
+//! pull_boundary_to_surface() and raise_mean_scaled_jacobian() on a surface
 //! whose projector (AABB tree and exact inside test) is already built, so
 //! that hexmesh() builds it once instead of once per level.
 #pragma once
@@ -9,6 +9,7 @@
 #include "hex/surface_projector.h"
 #include "subfab/hex/optimize_hex_mesh.h"
 #include "subfab/hex/pull_boundary_to_surface.h"
+#include "subfab/hex/raise_mean_scaled_jacobian.h"
 #include "subfab/hex/raise_min_scaled_jacobian.h"
 
 namespace subfab::detail {
@@ -21,5 +22,7 @@ RaiseMinScaledJacobianReport raise_min_scaled_jacobian(HexMesh& mesh, const Surf
 
 PullBoundaryReport pull_boundary_to_surface(HexMesh& mesh, const SurfaceProjector& surface,
                                             const PullBoundaryOptions& options);
+RaiseMeanScaledJacobianReport raise_mean_scaled_jacobian(HexMesh& mesh, const SurfaceProjector& surface,
+                                                         const RaiseMeanScaledJacobianOptions& options);
 
 }  // namespace subfab::detail

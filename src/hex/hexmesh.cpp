@@ -285,6 +285,11 @@ HexMeshResult hexmesh(const Mesh& surface, const Skeleton* skeleton, const HexMe
     r.pull = detail::pull_boundary_to_surface(mesh, projector, options.pull);
   }
   timer.lap("pull boundary");
+  if (options.raise_mean) {
+    StageScope stage(progress, "raise average quality");
+    r.mean = detail::raise_mean_scaled_jacobian(mesh, projector, options.mean);
+  }
+  timer.lap("raise average quality");
   {
     StageScope stage(progress, "measure");
     r.mesh = std::move(mesh);

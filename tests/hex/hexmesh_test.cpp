@@ -54,6 +54,26 @@ TEST(Hexmesh, CapsuleIsAValidMeshOnItsSurface) {
   EXPECT_LT(r.max_distance / r.diagonal, 0.05);
 }
 
+// The average pass (raise_mean_scaled_jacobian) runs last: it raises the
+// average, the minimum of the final pass stays, and the measures are its
+// result; without it, the average is the final pass's.
+TEST(Hexmesh, AveragePassRaisesTheAverageAndKeepsTheMinimum) {
+  const Mesh m = test::capsule(1.0, 3.0, 32, 8, 24);
+  HexMeshOptions options;
+  options.subdivisions = 1;
+  const HexMeshResult r = hexmesh(m, nullptr, options);
+  EXPECT_EQ(r.histogram[0], 0u);
+  EXPECT_DOUBLE_EQ(r.mean.avg_before, [&] {
+    options.raise_mean = false;
+    return hexmesh(m, nullptr, options).avg_sj;
+  }());
+  EXPECT_GT(r.mean.avg_after, r.mean.avg_before + 0.01);
+  EXPECT_DOUBLE_EQ(r.avg_sj, r.mean.avg_after);
+  EXPECT_GE(r.min_sj, r.raise.min_after);
+  EXPECT_DOUBLE_EQ(r.min_sj, r.mean.min_after);
+  EXPECT_LT(r.mean_distance / r.diagonal, 0.01);
+}
+
 // Resolution control (D.5) on cactus: cones found on terminal branches (the
 // trunk and the arm widen more than twice from the small junction cubes),
 // the integer programme solved, the parts beyond the cones split once more;

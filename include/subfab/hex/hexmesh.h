@@ -30,6 +30,9 @@
 //!   7. raise_min_scaled_jacobian() on the final level: local optimisation of
 //!      the worst elements, boundary sliding on the surface; elements still
 //!      inverted are untangled jointly, their boundary free near the surface;
+//!   7b. raise_mean_scaled_jacobian(): the average up (a smooth soft-min
+//!      energy over every hexahedron), no hexahedron under min(its value,
+//!      0.5), boundary sliding on the surface;
 //!   8. measures: conformity, scaled Jacobians, distance to the input.
 #pragma once
 
@@ -46,6 +49,7 @@
 #include "subfab/hex/hex_mesh.h"
 #include "subfab/hex/optimize_hex_mesh.h"
 #include "subfab/hex/pull_boundary_to_surface.h"
+#include "subfab/hex/raise_mean_scaled_jacobian.h"
 #include "subfab/hex/raise_min_scaled_jacobian.h"
 #include "subfab/hex/resample_skeleton.h"
 #include "subfab/hex/skeleton.h"
@@ -65,6 +69,8 @@ struct HexMeshOptions {
   RaiseMinScaledJacobianOptions raise;
   bool pull_boundary = true;         // then run pull_boundary_to_surface(): boundary vertices left off the surface pulled back
   PullBoundaryOptions pull;
+  bool raise_mean = true;            // then raise_mean_scaled_jacobian() (the average, the minimum kept)
+  RaiseMeanScaledJacobianOptions mean;
   Progress* progress = nullptr;
 };
 
@@ -88,6 +94,7 @@ struct HexMeshResult {
   OptimizeHexMeshReport optimize;
   RaiseMinScaledJacobianReport raise;
   PullBoundaryReport pull;
+  RaiseMeanScaledJacobianReport mean;
   std::vector<std::pair<std::string, double>> timings;  // seconds per stage
 };
 
