@@ -727,16 +727,18 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
   // RepairGaveUp is thrown at tolerance 0 only, and only when options.repair
   if (!(options.fallback_tolerance_fraction > 0)) return decompose_once(input, options);
   const auto start = Clock::now();
+  DecomposeOptions within = options;
+  within.tolerance_fraction = options.fallback_tolerance_fraction;
+  within.tolerance_abs = std::numeric_limits<double>::infinity();
+  const std::string instead = "Decomposing within a tolerance of " + std::to_string(options.fallback_tolerance_fraction) +
+                              " x the bounding-box diagonal instead";
+  DecomposeResult exact;
   try {
-    return decompose_once(input, options);
+    exact = decompose_once(input, options);
   } catch (const RepairGaveUp& e) {
-    DecomposeOptions within = options;
-    within.tolerance_fraction = options.fallback_tolerance_fraction;
-    within.tolerance_abs = std::numeric_limits<double>::infinity();
     if (options.progress)
-      options.progress->warn(std::string(e.what()) + "\nDecomposing within a tolerance of " +
-                             std::to_string(options.fallback_tolerance_fraction) +
-                             " x the bounding-box diagonal instead (creases and spikes finer than it may keep "
+      options.progress->warn(std::string(e.what()) + "\n" + instead +
+                             " (creases and spikes finer than it may keep "
                              "their undercuts; every block is still an exact height field, the deviation is "
                              "measured). Give --tolerance 0 to refuse, or --tolerance F to choose it.");
     DecomposeResult result = decompose_once(input, within);
@@ -744,6 +746,36 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
     result.timings.total = seconds_since(start);
     return result;
   }
+  if (exact.tolerance > 0 || exact.num_slivers == 0) return exact;
+  // Slivers at tolerance 0 (issue 17, "no slivers"): a slab thinner than
+  // 1e-4 x diagonal cannot be milled or glued; nothing may deviate at
+  // tolerance 0, so the sliver stage only counted them. At the default they
+  // are left to the fallback tolerance, whose sliver stage drops or merges
+  // them within it; kept only when that leaves no sliver.
+  const std::string why = std::to_string(exact.num_slivers) + " block(s) of the exact decomposition thinner than " +
+                          std::to_string(exact.sliver_thickness) +
+                          " model units (1e-4 x diagonal) where the model is thicker (slivers)";
+  if (options.progress)
+    options.progress->warn(why + "\n" + instead +
+                           " (slivers dropped or merged within it; every block is still an exact height field, the "
+                           "deviation is measured). Give --tolerance 0 to keep the exact blocks.");
+  try {
+    DecomposeResult result = decompose_once(input, within);
+    if (result.num_slivers == 0) {
+      result.tolerance_fallback = why;
+      result.timings.total = seconds_since(start);
+      return result;
+    }
+    if (options.progress)
+      options.progress->warn("within the fallback tolerance " + std::to_string(result.num_slivers) +
+                             " sliver block(s) are left too: the exact decomposition is kept");
+  } catch (const AlgorithmError& e) {
+    if (options.progress)
+      options.progress->warn(std::string("the decomposition within the fallback tolerance failed (") + e.what() +
+                             "): the exact decomposition is kept");
+  }
+  exact.timings.total = seconds_since(start);
+  return exact;
 }
 
 }  // namespace subfab

@@ -45,6 +45,8 @@ struct DecomposeOptions {
                                     // thesis's exact decomposition); see merge_within_tolerance()
   double tolerance_abs = std::numeric_limits<double>::infinity();  // --tolerance-abs: model units; the smaller wins
   double fallback_tolerance_fraction = 0.0;  // at tolerance 0: when the thin-feature repair (4.3.5) gives up,
+                                    // or the exact blocks include slivers (thinner than 1e-4 x diagonal where
+                                    // the model is thicker; kept only if that run leaves none),
                                     // decompose again within this tolerance (x bbox diagonal) instead of failing:
                                     // the features' faces may lean where their undercuts are within it, the
                                     // blocks are milled and measured as with --tolerance (issue 17, "every closed
@@ -107,9 +109,10 @@ struct DecomposeResult {
   std::size_t num_slivers = 0;           // slivers among the output blocks (kept: nothing removes them within T)
   std::size_t num_slivers_merged = 0;    // slivers merged into a neighbour within the tolerance
   std::size_t num_slivers_dropped = 0;   // slivers dropped within the tolerance
-  std::string tolerance_fallback;  // set when the thin-feature repair gave up at tolerance 0 and the result was
-                                   // made within options.fallback_tolerance_fraction instead: why (the repair's
-                                   // message); empty otherwise
+  std::string tolerance_fallback;  // set when the thin-feature repair gave up at tolerance 0, or the exact
+                                   // blocks had slivers, and the result was made within
+                                   // options.fallback_tolerance_fraction instead: why (the repair's message, or
+                                   // the slivers' count); empty otherwise
   std::size_t num_features_within_tolerance = 0;  // infeasible features (creases, spikes) left to the tolerance
                                                   // instead of the thin-feature repair (their faces' allowances
                                                   // pinned); 0 when none or when they were repaired
@@ -140,7 +143,9 @@ struct DecomposeResult {
 //! Every block is an exact height field whatever T. At T = 0 with
 //! options.fallback_tolerance_fraction > 0 (and options.repair), a repair
 //! that gives up is followed by the decomposition within that tolerance
-//! (result.tolerance_fallback says why; progress warns).
+//! (result.tolerance_fallback says why; progress warns); so are exact
+//! blocks with slivers (issue 17, "no slivers"), the result within the
+//! tolerance kept only when it has none (else the exact one, slivers counted).
 //! \throw InvalidArgumentError on bad options; AlgorithmError when a stage fails.
 DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options);
 
