@@ -35,8 +35,8 @@
 namespace subfab {
 
 struct ResampleSkeletonOptions {
-  double neck_ratio = 0.0;
-  double bend_ratio = 0.25;  // also split while a node strictly inside the interval is farther than this x the smaller end radius from the chord (0: off)  // also split while a node strictly inside the interval has a radius under this x the smaller end radius (0: off)
+  double neck_ratio = 0.0;   // also split while a node strictly inside the interval has a radius under this x the smaller end radius (0: off)
+  double bend_ratio = 0.25;  // on loops, also split while a node strictly inside the interval is farther than this x the smaller end radius from the chord (0: off)
   int max_depth = 16;  // recursion limit per arc (at most 2^16 samples; a guard, never reached on real data)
 };
 
