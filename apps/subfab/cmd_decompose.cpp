@@ -218,8 +218,10 @@ int run_decompose(const DecomposeArgs& args) {
         << " x diagonal where the model is thicker): " << result.num_slivers_merged << " merged, "
         << result.num_slivers_dropped << " dropped, " << result.num_slivers << " left";
     if (!result.tolerance_fallback.empty())
-      msg << "; NOT EXACT: the thin-feature repair gave up, so this tolerance (the default's fallback, "
-          << kFallbackTolerance << " x diagonal) was used; --tolerance 0 refuses instead";
+      msg << "; NOT EXACT: " << result.tolerance_fallback << ", so this tolerance (the default's fallback, "
+          << kFallbackTolerance << " x diagonal) was used; --tolerance 0 "
+          << (result.tolerance_fallback.find("slivers") != std::string::npos ? "keeps the exact blocks instead"
+                                                                              : "refuses instead");
     if (result.num_features_within_tolerance > 0)
       msg << "; " << result.num_features_within_tolerance
           << " crease(s)/spike(s) no exact block can cover were left to the tolerance instead of the thin-feature "

@@ -51,25 +51,22 @@ double hausdorff(const detail::DistanceMesh& from, const detail::DistanceMesh& t
 //! causes (see remove_slivers.h), or infinity when it may not be dropped
 //! (a block sticking out of the solid lies within 2T of it).
 double drop_bound(const Mesh& solid, const std::vector<Block>& blocks, const std::vector<BoundingBox>& boxes,
-                  const std::vector<char>& filled, std::size_t b, double tolerance, double error) {
+                  std::size_t b, double tolerance, double error, std::string* why = nullptr) {
   const double inf = std::numeric_limits<double>::infinity();
   const BoundingBox near = widened(boxes[b], 2.0 * tolerance);
   detail::DistanceMesh others;
   for (std::size_t k = 0; k < blocks.size(); ++k) {
     if (k == b || !detail::boxes_touch(boxes[k], near)) continue;
-    if (!filled.empty() && filled[k]) return inf;
-    detail::append_distance_patch(others, blocks[k].mesh, nullptr);
+    detail::append_distance_patch(others, blocks[k].mesh, nullptr);  // milled shapes too: they cover what they fill
   }
   const std::vector<int> q = faces_meeting(solid, widened(boxes[b], tolerance));
-  detail::DistanceMesh sliver, input_near;
-  detail::append_distance_patch(sliver, blocks[b].mesh, nullptr);
+  detail::DistanceMesh input_near;
   detail::append_distance_patch(input_near, solid, &q);
-  // (a) the faces the drop exposes lie on the sliver's surface: within T of the input surface.
-  const double exposed = hausdorff(sliver, input_near, error);
-  if (!(exposed + error <= tolerance)) return inf;
-  // (b) the input surface near the sliver stays within T of another block.
+  // The input surface near the sliver stays within T of another block.
   const double covered = hausdorff(input_near, others, error);
-  return std::max(exposed, covered) + error;
+  if (why && !(covered + error <= tolerance))
+    *why = "the input near it lies " + std::to_string(covered / tolerance) + " T from the other blocks";
+  return covered + error;
 }
 
 }  // namespace
@@ -124,7 +121,7 @@ SliverRemovalResult remove_slivers(const Mesh& solid, std::vector<Block> blocks,
       const std::vector<BoundingBox> boxes = detail::block_boxes(result.blocks);
       std::vector<double> bound(slivers.size());
       parallel_for(0, slivers.size(), [&](std::size_t s) {
-        bound[s] = drop_bound(solid, result.blocks, boxes, result.filled, slivers[s], options.tolerance, error);
+        bound[s] = drop_bound(solid, result.blocks, boxes, slivers[s], options.tolerance, error);
       });
       std::vector<char> drop(result.blocks.size(), 0);
       std::vector<BoundingBox> dropped;
@@ -181,6 +178,23 @@ SliverRemovalResult remove_slivers(const Mesh& solid, std::vector<Block> blocks,
                            std::to_string(result.num_merged) + " merged into a neighbour and " +
                            std::to_string(result.num_dropped) + " dropped within the tolerance, " +
                            std::to_string(result.num_left) + " left");
+    if (result.num_left > 0) {
+      // Why each sliver left could not be dropped (the merges tried every neighbour).
+      const std::vector<BoundingBox> boxes = detail::block_boxes(result.blocks);
+      for (std::size_t i = 0, shown = 0; i < flags.size() && shown < 8; ++i) {
+        if (!flags[i]) continue;
+        ++shown;
+        std::string why = "measured within T";
+        drop_bound(solid, result.blocks, boxes, i, options.tolerance, error, &why);
+        const Vec3 size = boxes[i].max - boxes[i].min;
+        options.progress->info("sliver left: block " + std::to_string(i + 1) + " (" +
+                               std::to_string(result.blocks[i].mesh.num_faces()) + " faces, box " +
+                               std::to_string(size.x()) + " x " + std::to_string(size.y()) + " x " +
+                               std::to_string(size.z()) + " at " + std::to_string(boxes[i].min.x()) + ", " +
+                               std::to_string(boxes[i].min.y()) + ", " + std::to_string(boxes[i].min.z()) +
+                               "): no drop: " + why + "; no merge with a neighbour within T");
+      }
+    }
     if (result.num_left > 0)
       options.progress->warn(std::to_string(result.num_left) +
                              " sliver block(s) neither merge nor drop keeps within the tolerance are kept "
