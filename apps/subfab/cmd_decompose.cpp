@@ -218,7 +218,7 @@ int run_decompose(const DecomposeArgs& args) {
         << " x diagonal where the model is thicker): " << result.num_slivers_merged << " merged, "
         << result.num_slivers_dropped << " dropped, " << result.num_slivers << " left";
     if (!result.tolerance_fallback.empty())
-      msg << "; NOT EXACT: " << result.tolerance_fallback << ", so this tolerance (the default's fallback, "
+      msg << "; NOT EXACT: " << result.tolerance_fallback << ", so this tolerance (the default's fallback, at most "
           << kFallbackTolerance << " x diagonal) was used; --tolerance 0 "
           << (result.tolerance_fallback.find("slivers") != std::string::npos ? "keeps the exact blocks instead"
                                                                               : "refuses instead");

@@ -723,33 +723,43 @@ DecomposeResult decompose_once(const Mesh& input, const DecomposeOptions& option
     (result.tolerance > 0 ? result.timings.tolerance : result.timings.carve) += seconds_since(tt);
   }
   // 9b. at the command's default, slivers left at T = 0: the same blocks
-  //     with the sliver stage run within the fallback tolerance (decompose()
-  //     chooses).
+  //     with the sliver stage run again within a tolerance, the smallest of
+  //     1, 2 and 5 x the sliver thickness (1e-4 x diagonal) up to the
+  //     fallback tolerance that removes them all (the threshold is
+  //     max(1e-4 x diagonal, T): a larger T makes more blocks slivers);
+  //     decompose() chooses.
   if (slivers_within && result.tolerance == 0 && result.num_slivers > 0 && options.fallback_tolerance_fraction > 0) {
     const auto tt = Clock::now();
-    DecomposeResult within = result;
-    SliverRemovalOptions so;
-    within.tolerance = options.fallback_tolerance_fraction * diagonal;
-    so.min_thickness = std::max(options.sliver_thickness * diagonal, within.tolerance);
-    so.tolerance = within.tolerance;
-    so.max_height = result.max_height;
-    so.machine_size = machine;
-    so.progress = progress;
-    so.block_defect = export_defect;
-    if (progress)
-      progress->info(std::to_string(result.num_slivers) + " sliver block(s) at tolerance 0: the sliver stage again "
-                     "on the exact blocks, within the fallback tolerance " +
-                     std::to_string(options.fallback_tolerance_fraction) + " x diagonal");
-    SliverRemovalResult sl = remove_slivers(solid, result.blocks, so);
-    within.blocks = std::move(sl.blocks);
-    within.filled = sl.filled.empty() ? std::vector<char>(within.blocks.size(), 0) : std::move(sl.filled);
-    within.deviation_bound = sl.max_deviation;
-    within.sliver_thickness = so.min_thickness;
-    within.num_slivers = sl.num_left;
-    within.num_slivers_merged = sl.num_merged;
-    within.num_slivers_dropped = sl.num_dropped;
-    within.timings.tolerance += seconds_since(tt);
-    *slivers_within = std::move(within);
+    std::vector<double> ladder;
+    for (double f : {options.sliver_thickness, 2 * options.sliver_thickness, options.fallback_tolerance_fraction})
+      if (f > 0 && f <= options.fallback_tolerance_fraction && (ladder.empty() || f > ladder.back())) ladder.push_back(f);
+    for (double f : ladder) {
+      DecomposeResult within = result;
+      within.tolerance = f * diagonal;
+      SliverRemovalOptions so;
+      so.min_thickness = std::max(options.sliver_thickness * diagonal, within.tolerance);
+      so.tolerance = within.tolerance;
+      so.max_height = result.max_height;
+      so.machine_size = machine;
+      so.progress = progress;
+      so.block_defect = export_defect;
+      if (progress)
+        progress->info(std::to_string(result.num_slivers) + " sliver block(s) at tolerance 0: the sliver stage again "
+                       "on the exact blocks, within " + std::to_string(f) + " x diagonal");
+      SliverRemovalResult sl = remove_slivers(solid, result.blocks, so);
+      if (sl.num_left > 0) continue;
+      within.blocks = std::move(sl.blocks);
+      within.filled = sl.filled.empty() ? std::vector<char>(within.blocks.size(), 0) : std::move(sl.filled);
+      within.deviation_bound = sl.max_deviation;
+      within.sliver_thickness = so.min_thickness;
+      within.num_slivers = 0;
+      within.num_slivers_merged = sl.num_merged;
+      within.num_slivers_dropped = sl.num_dropped;
+      within.timings.tolerance += seconds_since(tt);
+      *slivers_within = std::move(within);
+      break;
+    }
+    result.timings.carve += seconds_since(tt);
   }
   result.timings.total = seconds_since(start);
   if (slivers_within && *slivers_within) (*slivers_within)->timings.total = result.timings.total;
@@ -804,7 +814,7 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
   std::optional<DecomposeResult> chosen;
   if (slivers_within && slivers_within->num_slivers == 0) chosen = std::move(*slivers_within);
   const std::size_t in_place_blocks = chosen ? chosen->blocks.size() : 0;
-  if (!getenv("SUBFAB_NO_WITHIN")) try {
+  try {
     DecomposeResult result = decompose_once(input, within);
     if (result.num_slivers == 0 && (!chosen || result.blocks.size() < chosen->blocks.size())) {
       chosen = std::move(result);

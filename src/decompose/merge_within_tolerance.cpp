@@ -4,8 +4,6 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <map>
 #include <optional>
 #include <string>
@@ -129,12 +127,11 @@ std::optional<Candidate> evaluate(std::size_t i, std::size_t j, const State& s, 
   for (Axis axis : order)
     if (detail::within_limits(ubox, axis, o.max_height, o.machine_size) && screen.passes(axis_direction(axis), o.screen_factor * o.tolerance))
       axes.push_back(axis);
-  if (getenv("SUBFAB_DBG") && o.focus) fprintf(stderr, "DBG pair %zu %zu: %zu axes pass the screen\n", i, j, axes.size());
   if (axes.empty()) return std::nullopt;
   double moved = 0.0;
   const std::optional<Mesh> u =
       exact_union(s.blocks[i].mesh, s.blocks[j].mesh, o.clean_rounding, axis_direction(axes.front()), &moved);
-  if (!u) { if (getenv("SUBFAB_DBG") && o.focus) fprintf(stderr, "DBG pair %zu %zu: no union\n", i, j); return std::nullopt; }
+  if (!u) return std::nullopt;
   std::vector<const Mesh*> others;
   for (std::size_t k = 0; k < s.blocks.size(); ++k)
     if (k != i && k != j && s.filled[k]) others.push_back(&s.blocks[k].mesh);
@@ -156,7 +153,7 @@ std::optional<Candidate> evaluate(std::size_t i, std::size_t j, const State& s, 
       return Candidate{*u, axis, s.filled[i] || s.filled[j], 0.0};
     }
     const Mesh& m = milled.mesh;
-    if (!check_closed_solid(m).ok() || !is_height_field(m, d)) { if (getenv("SUBFAB_DBG") && o.focus) fprintf(stderr, "DBG pair %zu %zu axis %d: milled not solid/hf\n", i, j, (int)axis); continue; }
+    if (!check_closed_solid(m).ok() || !is_height_field(m, d)) continue;
     // The deviation first (it rejects most), then collisions (exact booleans).
     // Where neither block sticks out, the union lies in the solid and only
     // its fill can deviate (measure_fill(), local); else near the whole union.
@@ -164,7 +161,6 @@ std::optional<Candidate> evaluate(std::size_t i, std::size_t j, const State& s, 
     std::optional<std::vector<BoundingBox>> fill;
     if (!s.filled[i] && !s.filled[j]) fill = fill_columns(*u, m, axis);
     const FillDeviation dev = fill ? meter.measure_fill(m, others, *fill, fo) : meter.measure(m, others, fo);
-    if (getenv("SUBFAB_DBG") && o.focus) fprintf(stderr, "DBG pair %zu %zu axis %d: dev %g (T %g) %s\n", i, j, (int)axis, dev.bound(), o.tolerance, dev.failure.c_str());
     if (!dev.failure.empty() || dev.bound() + moved > o.tolerance) continue;
     const BoundingBox mbox = bounding_box(m);
     const double volume = signed_volume(m);
@@ -181,7 +177,6 @@ std::optional<Candidate> evaluate(std::size_t i, std::size_t j, const State& s, 
         collides = true;
       }
     }
-    if (getenv("SUBFAB_DBG") && o.focus) fprintf(stderr, "DBG pair %zu %zu axis %d: collides %d defect %s\n", i, j, (int)axis, (int)collides, o.block_defect ? o.block_defect(Block{m, axis, -1}).c_str() : "");
     if (collides) continue;
     if (o.block_defect && !o.block_defect(Block{m, axis, -1}).empty()) continue;
     return Candidate{m, axis, true, dev.bound() + moved};

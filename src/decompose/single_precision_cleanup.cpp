@@ -10,8 +10,6 @@
 #include <vector>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <cstdio>
-#include <cstdlib>
 
 #include "geometry/clip_solid_to_box.h"
 #include "geometry/deterministic_arena.h"
