@@ -312,6 +312,65 @@ std::optional<Mesh> clip_extreme_slabs(const Mesh& machine, double gap) {
   return out;
 }
 
+//! Removes the vertices of `machine` with exactly three faces that lie in
+//! one plane (a bump a few floats high, flattened by a snap: its faces may
+//! fold over each other): the three faces become the one triangle of their
+//! outer edges. Skipped where that triangle exists already. The same changes
+//! apply to `block`. Returns the number of vertices removed.
+std::size_t remove_flat_tips(Mesh& machine, Mesh& block, SinglePrecisionCleanup& r) {
+  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+  const auto point = [&](int v) {
+    const Vec3& p = machine.vertices[static_cast<std::size_t>(v)];
+    return K::Point_3(p.x(), p.y(), p.z());
+  };
+  std::vector<std::vector<std::size_t>> faces_of(machine.num_vertices());
+  std::set<std::array<int, 3>> existing;
+  for (std::size_t f = 0; f < machine.num_faces(); ++f) {
+    for (int v : machine.faces[f]) faces_of[static_cast<std::size_t>(v)].push_back(f);
+    std::array<int, 3> key{machine.faces[f][0], machine.faces[f][1], machine.faces[f][2]};
+    std::sort(key.begin(), key.end());
+    existing.insert(key);
+  }
+  std::vector<char> gone(machine.num_faces(), 0);
+  std::vector<Triangle> added;
+  std::size_t removed = 0;
+  for (std::size_t v = 0; v < machine.num_vertices(); ++v) {
+    const std::vector<std::size_t>& fs = faces_of[v];
+    if (fs.size() != 3 || gone[fs[0]] || gone[fs[1]] || gone[fs[2]]) continue;
+    std::map<int, int> next;  // outer edge x -> y of each face (v, x, y)
+    for (std::size_t f : fs) {
+      const Triangle& t = machine.faces[f];
+      const int k = t[0] == static_cast<int>(v) ? 0 : t[1] == static_cast<int>(v) ? 1 : 2;
+      next[t[(k + 1) % 3]] = t[(k + 2) % 3];
+    }
+    if (next.size() != 3) continue;
+    const int a = next.begin()->first, b = next[a], c = next.count(b) ? next[b] : -1;
+    if (c < 0 || !next.count(c) || next[c] != a) continue;
+    if (!CGAL::coplanar(point(static_cast<int>(v)), point(a), point(b), point(c)) ||
+        CGAL::collinear(point(a), point(b), point(c)))
+      continue;
+    std::array<int, 3> key{a, b, c};
+    std::sort(key.begin(), key.end());
+    if (existing.count(key)) continue;
+    existing.insert(key);
+    for (std::size_t f : fs) gone[f] = 1;
+    added.push_back({a, b, c});
+    ++removed;
+  }
+  if (removed == 0) return 0;
+  std::vector<Triangle> faces;
+  for (std::size_t f = 0; f < machine.num_faces(); ++f)
+    if (!gone[f]) faces.push_back(machine.faces[f]);
+  faces.insert(faces.end(), added.begin(), added.end());
+  machine.faces = std::move(faces);
+  block.faces = machine.faces;
+  remove_unreferenced_vertices(block);
+  remove_unreferenced_vertices(machine);
+  r.num_collapsed += removed;
+  r.num_faces_removed += 2 * removed;
+  return removed;
+}
+
 //! Rounds `machine` to float32 and repairs what the rounding broke (see
 //! clean_single_precision()).
 void round_and_repair(Mesh& machine, Mesh& block, SinglePrecisionCleanup& r) {
@@ -386,6 +445,7 @@ SinglePrecisionCleanup clean_single_precision(Mesh& machine, Mesh& block, const 
       const std::size_t before = c.num_collapsed + c.num_faces_removed;
       collapse(m, b, c);
       split_needles(m, b, c);
+      remove_flat_tips(m, b, c);
       collapse_short_edges(m, b, 0.5 * spacing, c);
       if (c.num_collapsed + c.num_faces_removed == before) break;
     }

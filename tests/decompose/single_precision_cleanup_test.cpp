@@ -115,6 +115,22 @@ TEST(SinglePrecisionCleanup, NoisyCoordinatesAreSnappedToTheirPlaneAndNeedlesSpl
   expect_same_block(original, block, machine, Axis::PosX, to_machine, 1e-6);
 }
 
+TEST(SinglePrecisionCleanup, AFlattenedBumpIsRemovedNotFolded) {
+  // Regression: couplingdown.off at the default (within the fallback 5e-4),
+  // block 024 (axis -x): a vertex 1e-8 off the plane y = 0 with three faces
+  // (a bump a float high). Snapped onto the plane, its three faces folded
+  // over each other (4 crossing pairs); now the vertex goes and its faces
+  // become one triangle.
+  const Mesh original = read_mesh(test::data_path("regression/couplingdown_tol_block_024.obj"));
+  Mesh block = original;
+  const Eigen::Matrix3d to_machine = axis_to_machine(Axis::NegX);
+  Mesh machine = machine_mesh_of(block, Axis::NegX, Eigen::Matrix3d::Identity());
+  ASSERT_FALSE(check_single_precision(machine).ok());
+  const detail::SinglePrecisionCleanup r = detail::clean_single_precision(machine, block, &to_machine);
+  EXPECT_TRUE(r.ok);
+  expect_same_block(original, block, machine, Axis::NegX, to_machine, 1e-6);
+}
+
 TEST(SinglePrecisionCleanup, SubFloatFinOnABlocksSideIsClippedOff) {
   // Regression: couplingdown.off at the default settings, block 013 (axis
   // -x): a box plane through a vertex at y = -2.6e-9 left a fin 2.6e-9
