@@ -217,9 +217,12 @@ int run_decompose(const DecomposeArgs& args) {
     msg << "; slivers (thinner than " << result.sliver_thickness / diagonal
         << " x diagonal where the model is thicker): " << result.num_slivers_merged << " merged, "
         << result.num_slivers_dropped << " dropped, " << result.num_slivers << " left";
-    if (!result.tolerance_fallback.empty())
-      msg << "; NOT EXACT: the thin-feature repair gave up, so this tolerance (the default's fallback, "
-          << kFallbackTolerance << " x diagonal) was used; --tolerance 0 refuses instead";
+    if (!result.tolerance_fallback.empty()) {
+      const bool slivers = result.tolerance_fallback.find("(slivers)") != std::string::npos;
+      msg << "; NOT EXACT: " << (slivers ? result.tolerance_fallback : std::string("the thin-feature repair gave up"))
+          << ", so this tolerance (the default's fallback, at most " << kFallbackTolerance
+          << " x diagonal) was used; --tolerance 0 " << (slivers ? "keeps the exact blocks instead" : "refuses instead");
+    }
     if (result.num_features_within_tolerance > 0)
       msg << "; " << result.num_features_within_tolerance
           << " crease(s)/spike(s) no exact block can cover were left to the tolerance instead of the thin-feature "

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdint>
 #include <numeric>
+#include <optional>
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -507,8 +508,12 @@ bool stages_within_tolerance(const Mesh& solid, const std::vector<std::array<dou
   }
 }
 
-//! decompose() at options' tolerance, no fallback.
-DecomposeResult decompose_once(const Mesh& input, const DecomposeOptions& options) {
+//! decompose() at options' tolerance, no fallback. At tolerance 0 with a
+//! fallback tolerance (the command's default) and slivers left,
+//! `*slivers_within` receives the same blocks with the sliver stage run
+//! again within the fallback tolerance (remove_slivers_within_fallback()).
+DecomposeResult decompose_once(const Mesh& input, const DecomposeOptions& options,
+                               std::optional<DecomposeResult>* slivers_within = nullptr) {
   Progress* progress = options.progress;
   const auto start = Clock::now();
   DecomposeResult result;
@@ -667,7 +672,8 @@ DecomposeResult decompose_once(const Mesh& input, const DecomposeOptions& option
     std::string defect = rounding.defect(b, &finished);
     if (defect.empty() && !finished.faces.empty()) {
       Mesh stl = machine_mesh_of(finished, b.axis, result.rotation);
-      if (!detail::clean_single_precision(stl, finished).ok) defect = "not a solid in single precision";
+      const Eigen::Matrix3d to_machine = axis_to_machine(b.axis) * result.rotation;
+      if (!detail::clean_single_precision(stl, finished, &to_machine).ok) defect = "not a solid in single precision";
     }
     return defect;
   };
@@ -716,7 +722,47 @@ DecomposeResult decompose_once(const Mesh& input, const DecomposeOptions& option
     }
     (result.tolerance > 0 ? result.timings.tolerance : result.timings.carve) += seconds_since(tt);
   }
+  // 9b. at the command's default, slivers left at T = 0: the same blocks
+  //     with the sliver stage run again within a tolerance, the smallest of
+  //     1, 2 and 5 x the sliver thickness (1e-4 x diagonal) up to the
+  //     fallback tolerance that removes them all (the threshold is
+  //     max(1e-4 x diagonal, T): a larger T makes more blocks slivers);
+  //     decompose() chooses.
+  if (slivers_within && result.tolerance == 0 && result.num_slivers > 0 && options.fallback_tolerance_fraction > 0) {
+    const auto tt = Clock::now();
+    std::vector<double> ladder;
+    for (double f : {options.sliver_thickness, 2 * options.sliver_thickness, options.fallback_tolerance_fraction})
+      if (f > 0 && f <= options.fallback_tolerance_fraction && (ladder.empty() || f > ladder.back())) ladder.push_back(f);
+    for (double f : ladder) {
+      DecomposeResult within = result;
+      within.tolerance = f * diagonal;
+      SliverRemovalOptions so;
+      so.min_thickness = std::max(options.sliver_thickness * diagonal, within.tolerance);
+      so.tolerance = within.tolerance;
+      so.max_height = result.max_height;
+      so.machine_size = machine;
+      so.progress = progress;
+      so.block_defect = export_defect;
+      if (progress)
+        progress->info(std::to_string(result.num_slivers) + " sliver block(s) at tolerance 0: the sliver stage again "
+                       "on the exact blocks, within " + std::to_string(f) + " x diagonal");
+      SliverRemovalResult sl = remove_slivers(solid, result.blocks, so);
+      if (sl.num_left > 0) continue;
+      within.blocks = std::move(sl.blocks);
+      within.filled = sl.filled.empty() ? std::vector<char>(within.blocks.size(), 0) : std::move(sl.filled);
+      within.deviation_bound = sl.max_deviation;
+      within.sliver_thickness = so.min_thickness;
+      within.num_slivers = 0;
+      within.num_slivers_merged = sl.num_merged;
+      within.num_slivers_dropped = sl.num_dropped;
+      within.timings.tolerance += seconds_since(tt);
+      *slivers_within = std::move(within);
+      break;
+    }
+    result.timings.carve += seconds_since(tt);
+  }
   result.timings.total = seconds_since(start);
+  if (slivers_within && *slivers_within) (*slivers_within)->timings.total = result.timings.total;
   return result;
 }
 
@@ -733,8 +779,9 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
   const std::string instead = "Decomposing within a tolerance of " + std::to_string(options.fallback_tolerance_fraction) +
                               " x the bounding-box diagonal instead";
   DecomposeResult exact;
+  std::optional<DecomposeResult> slivers_within;  // the exact blocks with the slivers removed within the fallback
   try {
-    exact = decompose_once(input, options);
+    exact = decompose_once(input, options, &slivers_within);
   } catch (const RepairGaveUp& e) {
     if (options.progress)
       options.progress->warn(std::string(e.what()) + "\n" + instead +
@@ -750,8 +797,13 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
   // Slivers at tolerance 0 (issue 17, "no slivers"): a slab thinner than
   // 1e-4 x diagonal cannot be milled or glued; nothing may deviate at
   // tolerance 0, so the sliver stage only counted them. At the default they
-  // are left to the fallback tolerance, whose sliver stage drops or merges
-  // them within it; kept only when that leaves no sliver.
+  // are left to the fallback tolerance, two ways: (a) the whole model
+  // decomposed again within it (its sliver stage drops or merges them within
+  // it; usually fewer blocks), (b) the exact blocks with the sliver stage run
+  // again within it (decompose_once(): only the slivers change). The one of
+  // those without slivers with fewer blocks is kept ((b) on a tie: it
+  // deviates only where the slivers were); when both have slivers, the
+  // exact blocks.
   const std::string why = std::to_string(exact.num_slivers) + " block(s) of the exact decomposition thinner than " +
                           std::to_string(exact.sliver_thickness) +
                           " model units (1e-4 x diagonal) where the model is thicker (slivers)";
@@ -759,21 +811,34 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
     options.progress->warn(why + "\n" + instead +
                            " (slivers dropped or merged within it; every block is still an exact height field, the "
                            "deviation is measured). Give --tolerance 0 to keep the exact blocks.");
+  std::optional<DecomposeResult> chosen;
+  if (slivers_within && slivers_within->num_slivers == 0) chosen = std::move(*slivers_within);
+  const std::size_t in_place_blocks = chosen ? chosen->blocks.size() : 0;
   try {
     DecomposeResult result = decompose_once(input, within);
-    if (result.num_slivers == 0) {
-      result.tolerance_fallback = why;
-      result.timings.total = seconds_since(start);
-      return result;
+    if (result.num_slivers == 0 && (!chosen || result.blocks.size() < chosen->blocks.size())) {
+      chosen = std::move(result);
+    } else if (options.progress) {
+      options.progress->warn(
+          result.num_slivers > 0
+              ? "within the fallback tolerance " + std::to_string(result.num_slivers) + " sliver block(s) are left too"
+              : "within the fallback tolerance " + std::to_string(result.blocks.size()) + " blocks, not fewer");
     }
-    if (options.progress)
-      options.progress->warn("within the fallback tolerance " + std::to_string(result.num_slivers) +
-                             " sliver block(s) are left too: the exact decomposition is kept");
   } catch (const AlgorithmError& e) {
     if (options.progress)
-      options.progress->warn(std::string("the decomposition within the fallback tolerance failed (") + e.what() +
-                             "): the exact decomposition is kept");
+      options.progress->warn(std::string("the decomposition within the fallback tolerance failed (") + e.what() + ")");
   }
+  if (chosen) {
+    if (options.progress && in_place_blocks > 0 && in_place_blocks == chosen->blocks.size())
+      options.progress->warn("the exact blocks are kept, their slivers removed within the fallback tolerance (" +
+                             std::to_string(chosen->num_slivers_dropped) + " dropped, " +
+                             std::to_string(chosen->num_slivers_merged) + " merged)");
+    chosen->tolerance_fallback = why;
+    chosen->timings.total = seconds_since(start);
+    return std::move(*chosen);
+  }
+  if (options.progress)
+    options.progress->warn("slivers are left within the fallback tolerance both ways: the exact decomposition is kept");
   exact.timings.total = seconds_since(start);
   return exact;
 }

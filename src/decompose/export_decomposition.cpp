@@ -108,7 +108,7 @@ std::vector<ExportedBlock> make_exported_blocks(const Mesh& input, const Decompo
     // (the block, valid in doubles, is not damaged by a partial cleanup; check
     // 8 reports the STL).
     const Mesh block_before = e.mesh, machine_before = e.machine_mesh;
-    const detail::SinglePrecisionCleanup clean = detail::clean_single_precision(e.machine_mesh, e.mesh);
+    const detail::SinglePrecisionCleanup clean = detail::clean_single_precision(e.machine_mesh, e.mesh, &to_machine);
     if (!clean.ok) {
       e.mesh = block_before;
       e.machine_mesh = machine_before;

@@ -38,6 +38,42 @@ std::vector<int> faces_meeting(const Mesh& mesh, const BoundingBox& box) {
   return out;
 }
 
+//! The parts of `mesh`'s faces `faces` inside `box` (each face clipped to
+//! the box, Sutherland-Hodgman, and fanned into triangles): a soup.
+Mesh clipped_faces(const Mesh& mesh, const std::vector<int>& faces, const BoundingBox& box) {
+  Mesh out;
+  std::vector<Vec3> poly, next;
+  for (int f : faces) {
+    poly.clear();
+    for (int v : mesh.faces[static_cast<std::size_t>(f)]) poly.push_back(mesh.vertices[static_cast<std::size_t>(v)]);
+    for (int k = 0; k < 3 && !poly.empty(); ++k)
+      for (int side = 0; side < 2 && !poly.empty(); ++side) {
+        // keep s * (p[k] - bound) <= 0
+        const double bound = side == 0 ? box.max[k] : box.min[k];
+        const double sgn = side == 0 ? 1.0 : -1.0;
+        next.clear();
+        for (std::size_t i = 0; i < poly.size(); ++i) {
+          const Vec3& a = poly[i];
+          const Vec3& b = poly[(i + 1) % poly.size()];
+          const double da = sgn * (a[k] - bound), db = sgn * (b[k] - bound);
+          if (da <= 0) next.push_back(a);
+          if ((da < 0 && db > 0) || (da > 0 && db < 0)) {
+            Vec3 c = a + (b - a) * (da / (da - db));
+            c[k] = bound;
+            next.push_back(c);
+          }
+        }
+        poly.swap(next);
+      }
+    if (poly.size() < 3 || (poly[1] - poly[0]).cross(poly[2] - poly[0]).squaredNorm() == 0) continue;
+    const int base = static_cast<int>(out.vertices.size());
+    out.vertices.insert(out.vertices.end(), poly.begin(), poly.end());
+    for (std::size_t i = 1; i + 1 < poly.size(); ++i)
+      out.faces.push_back({base, base + static_cast<int>(i), base + static_cast<int>(i) + 1});
+  }
+  return out;
+}
+
 //! One-sided Hausdorff distance from `from` to `to` within `error` (CGAL's
 //! bounded-error algorithm); infinity when `to` is empty, 0 when `from` is.
 double hausdorff(const detail::DistanceMesh& from, const detail::DistanceMesh& to, double error) {
@@ -47,29 +83,26 @@ double hausdorff(const detail::DistanceMesh& from, const detail::DistanceMesh& t
   return PMP::bounded_error_Hausdorff_distance<CGAL::Sequential_tag>(from, to, error, no_match, no_match);
 }
 
-//! The bound (measures + error) of the deviation that dropping sliver `b`
-//! causes (see remove_slivers.h), or infinity when it may not be dropped
-//! (a block sticking out of the solid lies within 2T of it).
+//! The bound (measure + error) of the deviation that dropping sliver `b`
+//! causes (see remove_slivers.h); `why` (when set and the bound exceeds T)
+//! says how far the input near it lies from the other blocks.
 double drop_bound(const Mesh& solid, const std::vector<Block>& blocks, const std::vector<BoundingBox>& boxes,
-                  const std::vector<char>& filled, std::size_t b, double tolerance, double error) {
-  const double inf = std::numeric_limits<double>::infinity();
+                  std::size_t b, double tolerance, double error, std::string* why = nullptr) {
   const BoundingBox near = widened(boxes[b], 2.0 * tolerance);
   detail::DistanceMesh others;
   for (std::size_t k = 0; k < blocks.size(); ++k) {
     if (k == b || !detail::boxes_touch(boxes[k], near)) continue;
-    if (!filled.empty() && filled[k]) return inf;
-    detail::append_distance_patch(others, blocks[k].mesh, nullptr);
+    detail::append_distance_patch(others, blocks[k].mesh, nullptr);  // milled shapes too: they cover what they fill
   }
-  const std::vector<int> q = faces_meeting(solid, widened(boxes[b], tolerance));
-  detail::DistanceMesh sliver, input_near;
-  detail::append_distance_patch(sliver, blocks[b].mesh, nullptr);
-  detail::append_distance_patch(input_near, solid, &q);
-  // (a) the faces the drop exposes lie on the sliver's surface: within T of the input surface.
-  const double exposed = hausdorff(sliver, input_near, error);
-  if (!(exposed + error <= tolerance)) return inf;
-  // (b) the input surface near the sliver stays within T of another block.
+  const BoundingBox reach = widened(boxes[b], tolerance);
+  const Mesh near_input = clipped_faces(solid, faces_meeting(solid, reach), reach);
+  detail::DistanceMesh input_near;
+  detail::append_distance_patch(input_near, near_input, nullptr);
+  // The input surface near the sliver stays within T of another block.
   const double covered = hausdorff(input_near, others, error);
-  return std::max(exposed, covered) + error;
+  if (why && !(covered + error <= tolerance))
+    *why = "the input near it lies " + std::to_string(covered / tolerance) + " T from the other blocks";
+  return covered + error;
 }
 
 }  // namespace
@@ -124,7 +157,7 @@ SliverRemovalResult remove_slivers(const Mesh& solid, std::vector<Block> blocks,
       const std::vector<BoundingBox> boxes = detail::block_boxes(result.blocks);
       std::vector<double> bound(slivers.size());
       parallel_for(0, slivers.size(), [&](std::size_t s) {
-        bound[s] = drop_bound(solid, result.blocks, boxes, result.filled, slivers[s], options.tolerance, error);
+        bound[s] = drop_bound(solid, result.blocks, boxes, slivers[s], options.tolerance, error);
       });
       std::vector<char> drop(result.blocks.size(), 0);
       std::vector<BoundingBox> dropped;
@@ -181,6 +214,23 @@ SliverRemovalResult remove_slivers(const Mesh& solid, std::vector<Block> blocks,
                            std::to_string(result.num_merged) + " merged into a neighbour and " +
                            std::to_string(result.num_dropped) + " dropped within the tolerance, " +
                            std::to_string(result.num_left) + " left");
+    if (result.num_left > 0) {
+      // Why each sliver left could not be dropped (the merges tried every neighbour).
+      const std::vector<BoundingBox> boxes = detail::block_boxes(result.blocks);
+      for (std::size_t i = 0, shown = 0; i < flags.size() && shown < 8; ++i) {
+        if (!flags[i]) continue;
+        ++shown;
+        std::string why = "measured within T";
+        drop_bound(solid, result.blocks, boxes, i, options.tolerance, error, &why);
+        const Vec3 size = boxes[i].max - boxes[i].min;
+        options.progress->info("sliver left: block " + std::to_string(i + 1) + " (" +
+                               std::to_string(result.blocks[i].mesh.num_faces()) + " faces, box " +
+                               std::to_string(size.x()) + " x " + std::to_string(size.y()) + " x " +
+                               std::to_string(size.z()) + " at " + std::to_string(boxes[i].min.x()) + ", " +
+                               std::to_string(boxes[i].min.y()) + ", " + std::to_string(boxes[i].min.z()) +
+                               "): no drop: " + why + "; no merge with a neighbour within T");
+      }
+    }
     if (result.num_left > 0)
       options.progress->warn(std::to_string(result.num_left) +
                              " sliver block(s) neither merge nor drop keeps within the tolerance are kept "

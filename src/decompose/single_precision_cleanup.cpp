@@ -4,10 +4,17 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <set>
 #include <tuple>
 #include <vector>
 
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
+#include "geometry/clip_solid_to_box.h"
+#include "geometry/deterministic_arena.h"
+#include "geometry/exact_mesh.h"
+#include "geometry/solid_index.h"
 #include "subfab/checks/check_self_intersections.h"
 #include "subfab/validate/check_single_precision.h"
 
@@ -153,6 +160,217 @@ std::size_t collapse_short_edges(Mesh& machine, Mesh& block, double length, Sing
   return collapsed;
 }
 
+//! Snaps, per machine axis, the coordinates of `machine` that lie within
+//! `gap` of each other (clusters no wider than `gap`) to the cluster's most
+//! used value (ties: the lowest), and moves the same vertices of `block` by
+//! the same displacement taken back to its frame (`to_machine`^T). Returns
+//! the number of coordinates moved.
+std::size_t snap_to_planes(Mesh& machine, Mesh& block, const Eigen::Matrix3d& to_machine, double gap) {
+  std::size_t moved = 0;
+  std::vector<Vec3> delta(machine.num_vertices(), Vec3::Zero());
+  for (int k = 0; k < 3; ++k) {
+    std::map<double, std::size_t> count;
+    for (const Vec3& v : machine.vertices) ++count[v[k]];
+    std::map<double, double> to;  // value -> snapped value
+    for (auto it = count.begin(); it != count.end();) {
+      auto end = it;
+      double best = it->first;
+      std::size_t most = 0;
+      while (end != count.end() && end->first - it->first <= gap) {
+        if (end->second > most) {
+          most = end->second;
+          best = end->first;
+        }
+        ++end;
+      }
+      for (auto c = it; c != end; ++c) to[c->first] = best;
+      it = end;
+    }
+    for (std::size_t v = 0; v < machine.num_vertices(); ++v) {
+      const double target = to[machine.vertices[v][k]];
+      if (target == machine.vertices[v][k]) continue;
+      delta[v][k] = target - machine.vertices[v][k];
+      machine.vertices[v][k] = target;
+      ++moved;
+    }
+  }
+  for (std::size_t v = 0; v < machine.num_vertices(); ++v)
+    if (delta[v] != Vec3::Zero()) block.vertices[v] += to_machine.transpose() * delta[v];
+  return moved;
+}
+
+//! Removes the zero-area faces of `machine` whose three corners are distinct
+//! and collinear (a needle flattened by a snap): the corner m lying on the
+//! opposite edge (a, b) splits the face across that edge into two, and the
+//! needle goes (when the face across is the needle's own twin, both go).
+//! Skipped where the split would duplicate an edge. The same changes apply
+//! to `block` (same vertex ids). Returns the number of needles removed.
+std::size_t split_needles(Mesh& machine, Mesh& block, SinglePrecisionCleanup& r) {
+  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+  const auto point = [&](int v) {
+    const Vec3& p = machine.vertices[static_cast<std::size_t>(v)];
+    return K::Point_3(p.x(), p.y(), p.z());
+  };
+  std::size_t removed = 0;
+  for (int pass = 0; pass < 64; ++pass) {
+    std::map<std::pair<int, int>, std::size_t> edge_face;  // directed edge -> face
+    std::set<std::pair<int, int>> undirected;
+    for (std::size_t f = 0; f < machine.num_faces(); ++f)
+      for (int k = 0; k < 3; ++k) {
+        const int a = machine.faces[f][k], b = machine.faces[f][(k + 1) % 3];
+        edge_face[{a, b}] = f;
+        undirected.insert({std::min(a, b), std::max(a, b)});
+      }
+    std::vector<char> gone(machine.num_faces(), 0);
+    std::vector<Triangle> added;
+    std::set<int> touched;
+    for (std::size_t f = 0; f < machine.num_faces(); ++f) {
+      const Triangle t = machine.faces[f];
+      if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) continue;
+      if (!CGAL::collinear(point(t[0]), point(t[1]), point(t[2]))) continue;
+      if (touched.count(t[0]) || touched.count(t[1]) || touched.count(t[2])) continue;
+      // the corner between the other two
+      int i = -1;
+      for (int k = 0; k < 3 && i < 0; ++k)
+        if (CGAL::collinear_are_strictly_ordered_along_line(point(t[(k + 1) % 3]), point(t[k]), point(t[(k + 2) % 3])))
+          i = k;
+      if (i < 0) continue;  // two corners coincide: left to the weld
+      const int m = t[i], a = t[(i + 1) % 3], b = t[(i + 2) % 3];
+      const auto across = edge_face.find({b, a});
+      if (across == edge_face.end() || gone[across->second]) continue;
+      const Triangle g = machine.faces[across->second];
+      int d = -1;
+      for (int w : g)
+        if (w != a && w != b) d = w;
+      if (touched.count(d)) continue;
+      if (d == m) {  // the needle's twin: both go
+        gone[f] = gone[across->second] = 1;
+      } else {
+        if (undirected.count({std::min(m, d), std::max(m, d)})) continue;
+        gone[f] = gone[across->second] = 1;
+        added.push_back({b, m, d});
+        added.push_back({m, a, d});
+        undirected.insert({std::min(m, d), std::max(m, d)});
+      }
+      for (int w : {m, a, b, d}) touched.insert(w);
+      ++removed;
+    }
+    if (touched.empty()) break;
+    std::vector<Triangle> faces;
+    for (std::size_t f = 0; f < machine.num_faces(); ++f)
+      if (!gone[f]) faces.push_back(machine.faces[f]);
+    faces.insert(faces.end(), added.begin(), added.end());
+    machine.faces = std::move(faces);
+  }
+  if (removed == 0) return 0;
+  r.num_faces_removed += removed;
+  block.faces = machine.faces;
+  remove_unreferenced_vertices(block);
+  remove_unreferenced_vertices(machine);
+  return removed;
+}
+
+//! `machine` clipped, exactly, to the box that leaves out the sub-float
+//! slabs at its extremes: along each axis, when its coordinates within
+//! `gap` of its largest (smallest) one take more than one value, the part
+//! above the lowest (below the highest) of them goes (a fin thinner than a
+//! float on the block's side). Nullopt when there is no such slab, or the
+//! clip is not one closed piece.
+std::optional<Mesh> clip_extreme_slabs(const Mesh& machine, double gap) {
+  const BoundingBox box = bounding_box(machine);
+  Box3 keep{box.min.array() - 1.0, box.max.array() + 1.0};
+  bool any = false;
+  for (int k = 0; k < 3; ++k) {
+    std::set<double> values;
+    for (const Vec3& v : machine.vertices) values.insert(v[k]);
+    double top = box.max[k], bottom = box.min[k];
+    for (double x : values) {
+      if (x >= box.max[k] - gap) top = std::min(top, x);
+      if (x <= box.min[k] + gap) bottom = std::max(bottom, x);
+    }
+    if (top < box.max[k] && top > box.min[k]) {
+      keep.max[k] = top;
+      any = true;
+    }
+    if (bottom > box.min[k] && bottom < keep.max[k]) {
+      keep.min[k] = bottom;
+      any = true;
+    }
+  }
+  if (!any) return std::nullopt;
+  std::optional<Mesh> out;
+  warm_up_exact_booleans();
+  const SolidIndex index(machine);
+  run_in_arena([&] {
+    std::vector<ExactMesh> pieces = clip_solid_to_box(machine, index, keep);
+    if (pieces.size() != 1) return;
+    SuspendArena heap;
+    RoundingReport rounding;
+    Mesh m = to_double(pieces.front(), &rounding);
+    if (rounding.num_degenerate_faces + rounding.num_flipped_faces == 0) out = std::move(m);
+  });
+  return out;
+}
+
+//! Removes the vertices of `machine` with exactly three faces that lie in
+//! one plane (a bump a few floats high, flattened by a snap: its faces may
+//! fold over each other): the three faces become the one triangle of their
+//! outer edges. Skipped where that triangle exists already. The same changes
+//! apply to `block`. Returns the number of vertices removed.
+std::size_t remove_flat_tips(Mesh& machine, Mesh& block, SinglePrecisionCleanup& r) {
+  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+  const auto point = [&](int v) {
+    const Vec3& p = machine.vertices[static_cast<std::size_t>(v)];
+    return K::Point_3(p.x(), p.y(), p.z());
+  };
+  std::vector<std::vector<std::size_t>> faces_of(machine.num_vertices());
+  std::set<std::array<int, 3>> existing;
+  for (std::size_t f = 0; f < machine.num_faces(); ++f) {
+    for (int v : machine.faces[f]) faces_of[static_cast<std::size_t>(v)].push_back(f);
+    std::array<int, 3> key{machine.faces[f][0], machine.faces[f][1], machine.faces[f][2]};
+    std::sort(key.begin(), key.end());
+    existing.insert(key);
+  }
+  std::vector<char> gone(machine.num_faces(), 0);
+  std::vector<Triangle> added;
+  std::size_t removed = 0;
+  for (std::size_t v = 0; v < machine.num_vertices(); ++v) {
+    const std::vector<std::size_t>& fs = faces_of[v];
+    if (fs.size() != 3 || gone[fs[0]] || gone[fs[1]] || gone[fs[2]]) continue;
+    std::map<int, int> next;  // outer edge x -> y of each face (v, x, y)
+    for (std::size_t f : fs) {
+      const Triangle& t = machine.faces[f];
+      const int k = t[0] == static_cast<int>(v) ? 0 : t[1] == static_cast<int>(v) ? 1 : 2;
+      next[t[(k + 1) % 3]] = t[(k + 2) % 3];
+    }
+    if (next.size() != 3) continue;
+    const int a = next.begin()->first, b = next[a], c = next.count(b) ? next[b] : -1;
+    if (c < 0 || !next.count(c) || next[c] != a) continue;
+    if (!CGAL::coplanar(point(static_cast<int>(v)), point(a), point(b), point(c)) ||
+        CGAL::collinear(point(a), point(b), point(c)))
+      continue;
+    std::array<int, 3> key{a, b, c};
+    std::sort(key.begin(), key.end());
+    if (existing.count(key)) continue;
+    existing.insert(key);
+    for (std::size_t f : fs) gone[f] = 1;
+    added.push_back({a, b, c});
+    ++removed;
+  }
+  if (removed == 0) return 0;
+  std::vector<Triangle> faces;
+  for (std::size_t f = 0; f < machine.num_faces(); ++f)
+    if (!gone[f]) faces.push_back(machine.faces[f]);
+  faces.insert(faces.end(), added.begin(), added.end());
+  machine.faces = std::move(faces);
+  block.faces = machine.faces;
+  remove_unreferenced_vertices(block);
+  remove_unreferenced_vertices(machine);
+  r.num_collapsed += removed;
+  r.num_faces_removed += 2 * removed;
+  return removed;
+}
+
 //! Rounds `machine` to float32 and repairs what the rounding broke (see
 //! clean_single_precision()).
 void round_and_repair(Mesh& machine, Mesh& block, SinglePrecisionCleanup& r) {
@@ -195,7 +413,7 @@ void round_and_repair(Mesh& machine, Mesh& block, SinglePrecisionCleanup& r) {
 
 }  // namespace
 
-SinglePrecisionCleanup clean_single_precision(Mesh& machine, Mesh& block) {
+SinglePrecisionCleanup clean_single_precision(Mesh& machine, Mesh& block, const Eigen::Matrix3d* to_machine) {
   SinglePrecisionCleanup r;
   if (check_single_precision(machine).ok()) return r;
   const Mesh machine_before = machine, block_before = block;
@@ -208,12 +426,54 @@ SinglePrecisionCleanup clean_single_precision(Mesh& machine, Mesh& block) {
   const double spacing = magnitude * std::ldexp(1.0, -23);  // float32's spacing at the largest coordinate (upper bound)
   SinglePrecisionCleanup again;
   Mesh machine2 = machine_before, block2 = block_before;
-  if (collapse_short_edges(machine2, block2, 4 * spacing, again) == 0) return r;
-  round_and_repair(machine2, block2, again);
-  if (!again.ok) return r;
-  machine = std::move(machine2);
-  block = std::move(block2);
-  return again;
+  if (collapse_short_edges(machine2, block2, 4 * spacing, again) > 0) {
+    round_and_repair(machine2, block2, again);
+    if (again.ok) {
+      machine = std::move(machine2);
+      block = std::move(block2);
+      return again;
+    }
+  }
+  // Coordinates a few float spacings off a plane of the block (CAD noise:
+  // vertices 1e-10 to 1e-8 off the plane of their neighbours; a box plane
+  // through one of them cuts a sub-float fin or needle faces): snap them
+  // onto the plane first, weld, split the needles, then round.
+  if (!to_machine) return r;
+  const auto snap_and_round = [&](Mesh& m, Mesh& b, SinglePrecisionCleanup& c) {
+    snap_to_planes(m, b, *to_machine, 4 * spacing);
+    for (int pass = 0; pass < 4; ++pass) {
+      const std::size_t before = c.num_collapsed + c.num_faces_removed;
+      collapse(m, b, c);
+      split_needles(m, b, c);
+      remove_flat_tips(m, b, c);
+      collapse_short_edges(m, b, 0.5 * spacing, c);
+      if (c.num_collapsed + c.num_faces_removed == before) break;
+    }
+    round_and_repair(m, b, c);
+    return c.ok;
+  };
+  SinglePrecisionCleanup snapped;
+  Mesh machine3 = machine_before, block3 = block_before;
+  if (snap_and_round(machine3, block3, snapped)) {
+    machine = std::move(machine3);
+    block = std::move(block3);
+    return snapped;
+  }
+  // A fin thinner than a float on a side of the block (a box plane through
+  // a noisy vertex): snapping flattens it into two coincident layers; clip
+  // it off exactly instead (in machine coordinates; the block is the clipped
+  // mesh moved back), then snap and round.
+  std::optional<Mesh> clipped = clip_extreme_slabs(machine_before, 4 * spacing);
+  if (!clipped) return r;
+  const Vec3 shift = machine_before.vertices.front() - *to_machine * block_before.vertices.front();
+  Mesh block4 = *clipped;
+  for (Vec3& v : block4.vertices) v = to_machine->transpose() * (v - shift);
+  SinglePrecisionCleanup fin;
+  fin.num_faces_removed = machine_before.num_faces();  // counted as replaced
+  if (!snap_and_round(*clipped, block4, fin)) return r;
+  machine = std::move(*clipped);
+  block = std::move(block4);
+  return fin;
 }
 
 }  // namespace subfab::detail

@@ -10,6 +10,8 @@
 #include <cstddef>
 #include <string>
 
+#include <Eigen/Core>
+
 #include "subfab/mesh/mesh.h"
 
 namespace subfab::detail {
@@ -39,6 +41,6 @@ struct SinglePrecisionCleanup {
 //! pinching the surface; that result is kept when it is a solid. The
 //! machine mesh's coordinates are left as floats. `ok` says whether the
 //! float32 mesh is a solid at the end (it is checked again).
-SinglePrecisionCleanup clean_single_precision(Mesh& machine, Mesh& block);
+SinglePrecisionCleanup clean_single_precision(Mesh& machine, Mesh& block, const Eigen::Matrix3d* to_machine = nullptr);
 
 }  // namespace subfab::detail

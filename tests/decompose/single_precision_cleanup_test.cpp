@@ -8,6 +8,7 @@
 #include "subfab/decompose/export_decomposition.h"
 #include "subfab/mesh/read_mesh.h"
 #include "subfab/validate/check_single_precision.h"
+#include "subfab/validate/validate_decomposition.h"
 #include "support/block_test_shapes.h"
 #include "support/test_support.h"
 
@@ -69,6 +70,83 @@ TEST(SinglePrecisionCleanup, ClusterOfNearlyCoincidentVerticesIsCollapsedAlongIt
   // Only sub-float features went: a handful of vertices and their faces.
   EXPECT_LE(r.num_collapsed, 12u);
   EXPECT_GE(machine.num_faces() + 2 * 12, original.num_faces());
+}
+
+//! A block cleaned for float32 is still the block: closed solid, height
+//! field along `axis`, same volume within `rel`, the machine mesh its
+//! rigid move (same faces), and its STL a solid.
+void expect_same_block(const Mesh& original, const Mesh& block, const Mesh& machine, Axis axis,
+                       const Eigen::Matrix3d& to_machine, double rel) {
+  EXPECT_TRUE(check_single_precision(machine).ok());
+  EXPECT_TRUE(check_closed_solid(block).ok());
+  EXPECT_TRUE(check_height_field(block, axis_direction(axis)).ok());
+  EXPECT_NEAR(signed_volume(block), signed_volume(original), rel * signed_volume(original));
+  EXPECT_EQ(block.faces, machine.faces);
+  ASSERT_EQ(block.num_vertices(), machine.num_vertices());
+  const Vec3 shift = machine.vertices.front() - to_machine * block.vertices.front();
+  for (std::size_t v = 0; v < block.num_vertices(); ++v)
+    EXPECT_LE((to_machine * block.vertices[v] + shift - machine.vertices[v]).norm(), 1e-7);
+  // every vertex stays within a few float spacings of the original block's box
+  BoundingBox box = bounding_box(original);
+  for (const Vec3& v : block.vertices)
+    EXPECT_TRUE((v.array() >= box.min.array() - 1e-7).all() && (v.array() <= box.max.array() + 1e-7).all());
+}
+
+TEST(SinglePrecisionCleanup, NoisyCoordinatesAreSnappedToTheirPlaneAndNeedlesSplit) {
+  // Regression: couplingdown.off at the default settings, block 082 (axis
+  // +x): the input's plane y = 0 has vertices at y = -1.5e-8 .. 2.6e-9 (CAD
+  // noise); shifted to the machine frame (y + 0.077) they round to one
+  // float, faces between them lose their area or cross (validate check 8).
+  // Merging equal floats and collapsing short edges could not repair it; the
+  // coordinates within 4 float spacings of each other are now snapped to one
+  // value first, and the needles that leaves are split.
+  const Mesh original = read_mesh(test::data_path("regression/couplingdown_block_082.obj"));
+  Mesh block = original;
+  const Eigen::Matrix3d to_machine = axis_to_machine(Axis::PosX);
+  Mesh machine = machine_mesh_of(block, Axis::PosX, Eigen::Matrix3d::Identity());
+  ASSERT_FALSE(check_single_precision(machine).ok());
+  const detail::SinglePrecisionCleanup without = [&] {
+    Mesh m = machine, b = block;
+    return detail::clean_single_precision(m, b);  // no frame: no snap (the old behaviour)
+  }();
+  EXPECT_FALSE(without.ok);
+  const detail::SinglePrecisionCleanup r = detail::clean_single_precision(machine, block, &to_machine);
+  EXPECT_TRUE(r.ok);
+  expect_same_block(original, block, machine, Axis::PosX, to_machine, 1e-6);
+}
+
+TEST(SinglePrecisionCleanup, AFlattenedBumpIsRemovedNotFolded) {
+  // Regression: couplingdown.off at the default (within the fallback 5e-4),
+  // block 024 (axis -x): a vertex 1e-8 off the plane y = 0 with three faces
+  // (a bump a float high). Snapped onto the plane, its three faces folded
+  // over each other (4 crossing pairs); now the vertex goes and its faces
+  // become one triangle.
+  const Mesh original = read_mesh(test::data_path("regression/couplingdown_tol_block_024.obj"));
+  Mesh block = original;
+  const Eigen::Matrix3d to_machine = axis_to_machine(Axis::NegX);
+  Mesh machine = machine_mesh_of(block, Axis::NegX, Eigen::Matrix3d::Identity());
+  ASSERT_FALSE(check_single_precision(machine).ok());
+  const detail::SinglePrecisionCleanup r = detail::clean_single_precision(machine, block, &to_machine);
+  EXPECT_TRUE(r.ok);
+  expect_same_block(original, block, machine, Axis::NegX, to_machine, 1e-6);
+}
+
+TEST(SinglePrecisionCleanup, SubFloatFinOnABlocksSideIsClippedOff) {
+  // Regression: couplingdown.off at the default settings, block 013 (axis
+  // -x): a box plane through a vertex at y = -2.6e-9 left a fin 2.6e-9
+  // thick between it and the plane y = 0 on the block's side. Snapped, its
+  // two sides would coincide (coplanar crossing faces); it is clipped off
+  // exactly (the block loses 1e-11 of its volume).
+  const Mesh original = read_mesh(test::data_path("regression/couplingdown_block_013.obj"));
+  Mesh block = original;
+  const Eigen::Matrix3d to_machine = axis_to_machine(Axis::NegX);
+  Mesh machine = machine_mesh_of(block, Axis::NegX, Eigen::Matrix3d::Identity());
+  ASSERT_FALSE(check_single_precision(machine).ok());
+  const detail::SinglePrecisionCleanup r = detail::clean_single_precision(machine, block, &to_machine);
+  EXPECT_TRUE(r.ok);
+  expect_same_block(original, block, machine, Axis::NegX, to_machine, 1e-6);
+  BoundingBox box = bounding_box(block);
+  EXPECT_LE(box.max.y(), -2.5e-9);  // the fin (y in [-2.6e-9, 0]) is gone
 }
 
 }  // namespace

@@ -46,7 +46,8 @@ struct DecomposeOptions {
   double tolerance_abs = std::numeric_limits<double>::infinity();  // --tolerance-abs: model units; the smaller wins
   double fallback_tolerance_fraction = 0.0;  // at tolerance 0: when the thin-feature repair (4.3.5) gives up,
                                     // or the exact blocks include slivers (thinner than 1e-4 x diagonal where
-                                    // the model is thicker; kept only if that run leaves none),
+                                    // the model is thicker; then also the exact blocks with their slivers
+                                    // dropped or merged within at most this tolerance; see decompose()),
                                     // decompose again within this tolerance (x bbox diagonal) instead of failing:
                                     // the features' faces may lean where their undercuts are within it, the
                                     // blocks are milled and measured as with --tolerance (issue 17, "every closed
@@ -143,9 +144,13 @@ struct DecomposeResult {
 //! Every block is an exact height field whatever T. At T = 0 with
 //! options.fallback_tolerance_fraction > 0 (and options.repair), a repair
 //! that gives up is followed by the decomposition within that tolerance
-//! (result.tolerance_fallback says why; progress warns); so are exact
-//! blocks with slivers (issue 17, "no slivers"), the result within the
-//! tolerance kept only when it has none (else the exact one, slivers counted).
+//! (result.tolerance_fallback says why; progress warns). Exact blocks with
+//! slivers (issue 17, "no slivers") fall back two ways: the whole model
+//! decomposed again within that tolerance, and the exact blocks with the
+//! sliver stage run again within the smallest of 1, 2, 5 x 1e-4 of the
+//! diagonal (up to that tolerance) that removes them all; of those without
+//! slivers the one with fewer blocks is kept (the exact blocks on a tie),
+//! else the exact one, slivers counted.
 //! \throw InvalidArgumentError on bad options; AlgorithmError when a stage fails.
 DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options);
 

@@ -14,26 +14,24 @@
 //!
 //! The rule: within a tolerance T > 0, every sliver is removed when that is
 //! measured within T, in this order:
-//! 1. DROPPED when the model stays within T without it (cheap: two
-//!    bounded-error distances; CGAL's bounded-error Hausdorff distance,
-//!    measure + error bound <= T):
-//!    (a) the faces the drop exposes (a subset of the sliver's surface) lie
-//!        within T of the input surface: one-sided distance from the whole
-//!        sliver surface to the input faces within T of its box;
-//!    (b) the input surface near the sliver (the input faces within T of its
-//!        box) stays within T of another block: one-sided distance to the
-//!        surfaces of the blocks within 2T of its box (a nearest point
-//!        farther away would be farther than T);
-//!    (c) no block that sticks out of the solid lies within 2T of its box
-//!        (where fills meet, (a) and (b) would not describe the surface made).
-//!    Input points farther than T from the sliver's box keep their nearest
-//!    surface point (it was not on the sliver), and the surface made gains
-//!    only the exposed faces, so (a) and (b) bound the whole change. The
-//!    dropped volume is left empty (a dent at most T deep, like the model's
-//!    empty interior). Drops in one pass are more than 2T apart; passes
-//!    repeat while some drop is taken. Typical case: a thin cap lying across
+//! 1. DROPPED when the input surface stays within T of the other blocks
+//!    without it (cheap: one bounded-error distance; CGAL's bounded-error
+//!    Hausdorff distance, measure + error bound <= T): the one-sided
+//!    distance from the input surface within T of the sliver's box (the
+//!    input faces meeting the box widened by T, clipped to it) to the
+//!    surfaces of the blocks within 2T of its box, sticking-out milled
+//!    shapes included (they cover what they fill; a nearest point farther
+//!    away would be farther than T). An input point farther than T from the
+//!    sliver's box was within T of another block before (its distance to the
+//!    sliver exceeds T), so this bounds the whole change of the coverage.
+//!    The faces the drop exposes need no measure: they lie inside the input
+//!    (cut faces between blocks, which the deviation does not count; the
+//!    model's interior may stay empty), and a dropped block that stuck out
+//!    only takes material away. The dropped volume is left empty (a dent at
+//!    most T deep). Drops in one pass are more than 2T apart; passes repeat
+//!    while some drop is taken. Typical cases: a thin cap lying across
 //!    several blocks, which no single neighbour's milled shape can take
-//!    without colliding with the others.
+//!    without colliding with the others; a thin wall inside the model.
 //! 2. MERGED into a touching block otherwise: the two replaced by the MILLED
 //!    SHAPE of their union along one of the six directions, under exactly the
 //!    tests of merge_within_tolerance() (closed 2-manifold, exact height
@@ -50,7 +48,9 @@
 //! "num_slivers", validate check 9). At T = 0 nothing may deviate and the
 //! exact merges (merge_blocks) have already joined every pair whose union is
 //! a block, so slivers are only counted and reported (none on the statues
-//! measured, bench/RESULTS.md).
+//! measured, bench/RESULTS.md); at the command's default decompose() then
+//! runs this stage again on the exact blocks within 1, 2 or 5 x 1e-4 of the
+//! diagonal (the fallback tolerance at most; decompose.h).
 //! Deterministic whatever the thread count.
 #pragma once
 
