@@ -700,15 +700,21 @@ DecomposeResult decompose_once(const Mesh& input, const DecomposeOptions& option
   // 9. no slivers (issue 17): blocks thinner than max(1e-4 x diagonal, T)
   //    where the model is thicker are merged or dropped within the
   //    tolerance; at T = 0 only counted (remove_slivers.h).
-  {
-    const auto tt = Clock::now();
+  // the sliver stage's options within tolerance t (validate's threshold
+  // max(1e-4 x diagonal, t)); shared by steps 9 and 9b
+  const auto sliver_options = [&](double t) {
     SliverRemovalOptions so;
-    so.min_thickness = std::max(options.sliver_thickness * diagonal, result.tolerance);
-    so.tolerance = result.tolerance;
+    so.min_thickness = std::max(options.sliver_thickness * diagonal, t);
+    so.tolerance = t;
     so.max_height = result.max_height;
     so.machine_size = machine;
     so.progress = progress;
     so.block_defect = export_defect;
+    return so;
+  };
+  {
+    const auto tt = Clock::now();
+    SliverRemovalOptions so = sliver_options(result.tolerance);
     if (!result.filled.empty()) so.filled = &result.filled;
     if (so.min_thickness > 0) {
       SliverRemovalResult sl = remove_slivers(solid, std::move(result.blocks), so);
@@ -736,13 +742,7 @@ DecomposeResult decompose_once(const Mesh& input, const DecomposeOptions& option
     for (double f : ladder) {
       DecomposeResult within = result;
       within.tolerance = f * diagonal;
-      SliverRemovalOptions so;
-      so.min_thickness = std::max(options.sliver_thickness * diagonal, within.tolerance);
-      so.tolerance = within.tolerance;
-      so.max_height = result.max_height;
-      so.machine_size = machine;
-      so.progress = progress;
-      so.block_defect = export_defect;
+      const SliverRemovalOptions so = sliver_options(within.tolerance);
       if (progress)
         progress->info(std::to_string(result.num_slivers) + " sliver block(s) at tolerance 0: the sliver stage again "
                        "on the exact blocks, within " + std::to_string(f) + " x diagonal");
