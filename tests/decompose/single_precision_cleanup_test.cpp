@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <string>
+
 #include "subfab/decompose/export_decomposition.h"
 #include "subfab/mesh/read_mesh.h"
 #include "subfab/validate/check_single_precision.h"
@@ -92,6 +94,25 @@ void expect_same_block(const Mesh& original, const Mesh& block, const Mesh& mach
     EXPECT_TRUE((v.array() >= box.min.array() - 1e-7).all() && (v.array() <= box.max.array() + 1e-7).all());
 }
 
+//! A regression block of data/regression read, put in its machine frame
+//! (not a solid in float32 there) and cleaned with the frame.
+struct CleanedBlock {
+  Mesh original, block, machine;
+  Eigen::Matrix3d to_machine;
+  detail::SinglePrecisionCleanup result;
+};
+
+CleanedBlock clean_regression_block(const std::string& file, Axis axis) {
+  CleanedBlock c;
+  c.original = read_mesh(test::data_path("regression/" + file));
+  c.block = c.original;
+  c.to_machine = axis_to_machine(axis);
+  c.machine = machine_mesh_of(c.block, axis, Eigen::Matrix3d::Identity());
+  EXPECT_FALSE(check_single_precision(c.machine).ok()) << file << " is already a solid in float32";
+  c.result = detail::clean_single_precision(c.machine, c.block, &c.to_machine);
+  return c;
+}
+
 TEST(SinglePrecisionCleanup, NoisyCoordinatesAreSnappedToTheirPlaneAndNeedlesSplit) {
   // Regression: couplingdown.off at the default settings, block 082 (axis
   // +x): the input's plane y = 0 has vertices at y = -1.5e-8 .. 2.6e-9 (CAD
@@ -100,19 +121,11 @@ TEST(SinglePrecisionCleanup, NoisyCoordinatesAreSnappedToTheirPlaneAndNeedlesSpl
   // Merging equal floats and collapsing short edges could not repair it; the
   // coordinates within 4 float spacings of each other are now snapped to one
   // value first, and the needles that leaves are split.
-  const Mesh original = read_mesh(test::data_path("regression/couplingdown_block_082.obj"));
-  Mesh block = original;
-  const Eigen::Matrix3d to_machine = axis_to_machine(Axis::PosX);
-  Mesh machine = machine_mesh_of(block, Axis::PosX, Eigen::Matrix3d::Identity());
-  ASSERT_FALSE(check_single_precision(machine).ok());
-  const detail::SinglePrecisionCleanup without = [&] {
-    Mesh m = machine, b = block;
-    return detail::clean_single_precision(m, b);  // no frame: no snap (the old behaviour)
-  }();
-  EXPECT_FALSE(without.ok);
-  const detail::SinglePrecisionCleanup r = detail::clean_single_precision(machine, block, &to_machine);
-  EXPECT_TRUE(r.ok);
-  expect_same_block(original, block, machine, Axis::PosX, to_machine, 1e-6);
+  const CleanedBlock c = clean_regression_block("couplingdown_block_082.obj", Axis::PosX);
+  EXPECT_TRUE(c.result.ok);
+  expect_same_block(c.original, c.block, c.machine, Axis::PosX, c.to_machine, 1e-6);
+  Mesh block = c.original, machine = machine_mesh_of(block, Axis::PosX, Eigen::Matrix3d::Identity());
+  EXPECT_FALSE(detail::clean_single_precision(machine, block).ok);  // no frame: no snap (the old behaviour)
 }
 
 TEST(SinglePrecisionCleanup, AFlattenedBumpIsRemovedNotFolded) {
@@ -121,14 +134,9 @@ TEST(SinglePrecisionCleanup, AFlattenedBumpIsRemovedNotFolded) {
   // (a bump a float high). Snapped onto the plane, its three faces folded
   // over each other (4 crossing pairs); now the vertex goes and its faces
   // become one triangle.
-  const Mesh original = read_mesh(test::data_path("regression/couplingdown_tol_block_024.obj"));
-  Mesh block = original;
-  const Eigen::Matrix3d to_machine = axis_to_machine(Axis::NegX);
-  Mesh machine = machine_mesh_of(block, Axis::NegX, Eigen::Matrix3d::Identity());
-  ASSERT_FALSE(check_single_precision(machine).ok());
-  const detail::SinglePrecisionCleanup r = detail::clean_single_precision(machine, block, &to_machine);
-  EXPECT_TRUE(r.ok);
-  expect_same_block(original, block, machine, Axis::NegX, to_machine, 1e-6);
+  const CleanedBlock c = clean_regression_block("couplingdown_tol_block_024.obj", Axis::NegX);
+  EXPECT_TRUE(c.result.ok);
+  expect_same_block(c.original, c.block, c.machine, Axis::NegX, c.to_machine, 1e-6);
 }
 
 TEST(SinglePrecisionCleanup, SubFloatFinOnABlocksSideIsClippedOff) {
@@ -137,16 +145,10 @@ TEST(SinglePrecisionCleanup, SubFloatFinOnABlocksSideIsClippedOff) {
   // thick between it and the plane y = 0 on the block's side. Snapped, its
   // two sides would coincide (coplanar crossing faces); it is clipped off
   // exactly (the block loses 1e-11 of its volume).
-  const Mesh original = read_mesh(test::data_path("regression/couplingdown_block_013.obj"));
-  Mesh block = original;
-  const Eigen::Matrix3d to_machine = axis_to_machine(Axis::NegX);
-  Mesh machine = machine_mesh_of(block, Axis::NegX, Eigen::Matrix3d::Identity());
-  ASSERT_FALSE(check_single_precision(machine).ok());
-  const detail::SinglePrecisionCleanup r = detail::clean_single_precision(machine, block, &to_machine);
-  EXPECT_TRUE(r.ok);
-  expect_same_block(original, block, machine, Axis::NegX, to_machine, 1e-6);
-  BoundingBox box = bounding_box(block);
-  EXPECT_LE(box.max.y(), -2.5e-9);  // the fin (y in [-2.6e-9, 0]) is gone
+  const CleanedBlock c = clean_regression_block("couplingdown_block_013.obj", Axis::NegX);
+  EXPECT_TRUE(c.result.ok);
+  expect_same_block(c.original, c.block, c.machine, Axis::NegX, c.to_machine, 1e-6);
+  EXPECT_LE(bounding_box(c.block).max.y(), -2.5e-9);  // the fin (y in [-2.6e-9, 0]) is gone
 }
 
 }  // namespace
