@@ -93,9 +93,20 @@ struct SizeLimits {
 
 class Grower {
  public:
+  //! \param fields_describe_mesh false when `index` holds a refinement of the
+  //!        mesh the fields were computed on: refine_mesh()'s rounded
+  //!        midpoints can tilt a sub-triangle of a face parallel to an axis by
+  //!        a hair, so that it faces away from that axis where its parent did
+  //!        not; the fields do not know it, and every move is then decided by
+  //!        the exact index alone.
   Grower(const SolidIndex& index, const std::array<HeightField, 6>& fields, const SizeLimits& limits,
-         bool maximal)
-      : index_(index), fields_(fields), grid_(fields[0].grid), limits_(limits), maximal_(maximal) {
+         bool maximal, bool fields_describe_mesh)
+      : index_(index),
+        fields_(fields),
+        grid_(fields[0].grid),
+        limits_(limits),
+        maximal_(maximal),
+        fields_describe_mesh_(fields_describe_mesh) {
     for (int d = 0; d < 3; ++d) {
       domain_.min[d] = grid_.coordinate(d, 0);
       domain_.max[d] = grid_.coordinate(d, grid_.num_points[static_cast<std::size_t>(d)] - 1);
@@ -236,7 +247,7 @@ class Grower {
     // Same answer as push_face without its exact queries: no face blocks by
     // the grid, and no face allowed only above a base floor (the field counts
     // those as facing) blocks exactly.
-    if (grid_says_valid(moved, axis) &&
+    if (fields_describe_mesh_ && grid_says_valid(moved, axis) &&
         (!index_.has_conditional_faces(axis) || index_.conditional_faces_allow(moved, axis))) {
       (side > 0 ? b.max[dim] : b.min[dim]) = clamped;
       return clamped == target;
@@ -294,6 +305,7 @@ class Grower {
   const GridGeometry& grid_;
   SizeLimits limits_;
   bool maximal_;
+  bool fields_describe_mesh_;
   Box3 domain_;
 };
 
@@ -435,7 +447,7 @@ GrowResult grow_boxes(const Mesh& mesh, const GrowOptions& options) {
     const std::vector<std::array<double, 3>> floors = floors_of(result);
     const SolidIndex index(result.mesh, sine, options.allowed_overhangs ? &allowed : nullptr,
                            options.overhang_floors ? &floors : nullptr);
-    const Grower grower(index, fields, limits, true);
+    const Grower grower(index, fields, limits, true, level == 0);
     const int nf = index.num_faces();
     // Boxes from before a refinement stay valid (same surface); re-check
     // exactly anyway since midpoints are rounded.

@@ -13,6 +13,7 @@
 #include "subfab/core/parallel.h"
 #include "subfab/decompose/resolve_overlaps.h"
 #include "subfab/decompose/select_cover.h"
+#include "subfab/decompose/tolerance_allowances.h"
 #include "subfab/mesh/read_mesh.h"
 #include "support/test_support.h"
 
@@ -184,6 +185,38 @@ TEST(GrowBoxes, IdenticalWhateverTheThreadCount) {
     EXPECT_EQ(one.boxes[i].box.max, many.boxes[i].box.max);
   }
   EXPECT_EQ(one.covered, many.covered);
+}
+
+TEST(GrowBoxes, RefinedFacesParallelToAnAxisDoNotFoolTheFields) {
+  // Regression (rotor.off turned 50 deg about x, `decompose --no-orient
+  // --tolerance 5e-4`, 2026-12-05: "snap_and_shrink: box 182 (axis +x) is
+  // not a valid height box", exit 1). Faces parallel to x were refined;
+  // the rounded midpoints tilted some sub-triangles by a hair, so that they
+  // face away from +x where their parent did not. The fields, computed on the
+  // unrefined mesh, let boxes grow through them. Every box must be exactly
+  // valid on the refined mesh.
+  const Mesh mesh = read_mesh(test::data_path("regression/rotor_turned_x50.off"));
+  ToleranceAllowanceOptions ao;  // decompose's first round
+  ao.tolerance = 5e-4 * bounding_box(mesh).diagonal();
+  ao.depth_fraction = 2.0;
+  const OverhangAllowances allowed = allowances_with_floors(
+      mesh, undercut_depths(mesh, ao), std::vector<std::array<std::uint8_t, 3>>(mesh.num_faces(), {0, 0, 0}),
+      {2.0, 1.0, 0.5}, ao.tolerance, 0.25);
+  GrowOptions o;
+  o.allowed_overhangs = &allowed.bits;
+  o.overhang_floors = &allowed.floors;
+  const GrowResult r = grow_boxes(mesh, o);
+  ASSERT_GT(r.num_refined_faces, 0);  // the refinement this is about
+  std::vector<std::uint8_t> bits;
+  std::vector<std::array<double, 3>> floors;
+  for (int parent : r.parent_face) {
+    bits.push_back(allowed.bits[static_cast<std::size_t>(parent)]);
+    floors.push_back(allowed.floors[static_cast<std::size_t>(parent)]);
+  }
+  const detail::SolidIndex index(r.mesh, 0.0, &bits, &floors);
+  std::size_t invalid = 0;
+  for (const HeightBox& hb : r.boxes) invalid += index.box_is_valid(hb) ? 0 : 1;
+  EXPECT_EQ(invalid, 0u) << "of " << r.boxes.size() << " boxes";
 }
 
 class GrowBoxesOnRealData : public ::testing::TestWithParam<std::string> {};
