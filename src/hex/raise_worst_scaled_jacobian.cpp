@@ -59,8 +59,11 @@ class WorstRaiser {
     if (topo_.on_boundary[v]) allowance_[v] = std::max(allowance_[v], fraction * scale_[v]);
   }
 
-  //! Optimises the patch (vertex indices, sorted); returns whether its
-  //! smallest corner rose; adds the accepted steps to `steps`.
+  //! Optimises the patch (vertex indices, sorted): from where it is, then
+  //! (with `restarts`) from its inside relaxed by `restarts` Jacobi
+  //! iterations; the positions with the larger smallest corner are kept,
+  //! never worse than at the start. Returns whether its smallest corner rose;
+  //! adds the accepted steps to `steps`.
   bool raise(const std::vector<std::size_t>& patch, std::size_t& steps) {
     // the hexahedra whose corners the patch moves
     hexes_.clear();
@@ -69,13 +72,66 @@ class WorstRaiser {
     hexes_.erase(std::unique(hexes_.begin(), hexes_.end()), hexes_.end());
     for (std::size_t j = 0; j < hexes_.size(); ++j) slot_[idx(hexes_[j])] = static_cast<int>(j);
     alpha_.resize(8 * hexes_.size());
+    std::vector<Vec3> original(patch.size());
+    for (std::size_t i = 0; i < patch.size(); ++i) original[i] = mesh_.vertices[patch[i]];
+    evaluate();
+    const double first = min_of(alpha_);
+    double result = ascend(patch, steps);
+    if (options_.restarts > 0) {
+      std::vector<Vec3> kept(patch.size());
+      for (std::size_t i = 0; i < patch.size(); ++i) kept[i] = mesh_.vertices[patch[i]];
+      relax(patch, options_.restarts);
+      std::size_t more = 0;
+      const double again = ascend(patch, more);
+      if (again > result) {
+        result = again, steps += more;
+      } else {
+        for (std::size_t i = 0; i < patch.size(); ++i) mesh_.vertices[patch[i]] = kept[i];
+      }
+    }
+    if (!(result > first))  // never worse than at the start
+      for (std::size_t i = 0; i < patch.size(); ++i) mesh_.vertices[patch[i]] = original[i];
+    for (int h : hexes_) slot_[idx(h)] = -1;
+    return result > first;
+  }
+
+ private:
+  //! Jacobi iterations on the inside of the patch (vertices whose
+  //! neighbours are all in it): an interior vertex to the mean of its
+  //! neighbours, a boundary vertex to the mean of its boundary neighbours,
+  //! placed as a step (onto the surface). The rim stays.
+  void relax(const std::vector<std::size_t>& patch, int iterations) {
+    std::vector<char> in(mesh_.vertices.size(), 0);
+    for (std::size_t v : patch) in[v] = 1;
+    std::vector<std::size_t> inner;
+    for (std::size_t v : patch) {
+      bool all = true;
+      for (int w : topo_.neighbors[v]) all = all && in[idx(w)];
+      if (all) inner.push_back(v);
+    }
+    std::vector<Vec3> next(inner.size());
+    for (int it = 0; it < iterations; ++it) {
+      for (std::size_t i = 0; i < inner.size(); ++i) {
+        const std::size_t v = inner[i];
+        const auto& around = topo_.on_boundary[v] ? topo_.boundary_neighbors[v] : topo_.neighbors[v];
+        Vec3 c = Vec3::Zero();
+        for (int w : around) c += mesh_.vertices[idx(w)];
+        next[i] = place(v, mesh_.vertices[v], c / static_cast<double>(std::max<std::size_t>(1, around.size())));
+      }
+      for (std::size_t i = 0; i < inner.size(); ++i) mesh_.vertices[inner[i]] = next[i];
+    }
+  }
+
+  //! Gradient ascent on the soft minimum from the patch's current positions
+  //! (see the header); leaves the positions with the largest smallest corner
+  //! met and returns that corner.
+  double ascend(const std::vector<std::size_t>& patch, std::size_t& steps) {
     std::vector<Vec3> dir(patch.size()), start(patch.size());
     double beta = options_.sharpness;
     int level = 0;  // of the continuation: beta = sharpness x 2^level
     evaluate();
     double value = soft_min(beta);
     double worst = min_of(alpha_);
-    const double first = worst;
     double last_t = 1e300;
     std::vector<Vec3> best(patch.size());
     for (std::size_t i = 0; i < patch.size(); ++i) best[i] = mesh_.vertices[patch[i]];
@@ -143,11 +199,9 @@ class WorstRaiser {
       last_t = 1e300;
     }
     for (std::size_t i = 0; i < patch.size(); ++i) mesh_.vertices[patch[i]] = best[i];
-    for (int h : hexes_) slot_[idx(h)] = -1;
-    return worst > first;
+    return worst;
   }
 
- private:
   //! Where a step of v from `from` to q really goes: a sliding vertex onto
   //! the surface (it stays at `from` beyond max_slide), a vertex off the
   //! surface no farther from it than it was.
@@ -249,13 +303,13 @@ RaiseWorstScaledJacobianReport detail::raise_worst_scaled_jacobian(HexMesh& mesh
         for (int v : mesh.hexes[h]) raiser.loosen(idx(v), options.max_off_surface);
   while (report.rounds < options.rounds) {
     ++report.rounds;
-    bool improved = false;
+    const double before = min_of(sj);
     for (const auto& patch : patches(mesh, raiser.topology(), sj, options.threshold, options.rings, options.max_patches)) {
-      improved = raiser.raise(patch, report.steps) || improved;
+      raiser.raise(patch, report.steps);
       ++report.patches;
     }
     sj = scaled_jacobians(mesh);
-    if (!improved) break;
+    if (!(min_of(sj) > before)) break;  // the worst element did not rise: another round would not lift it
   }
   report.min_after = min_of(sj);
   report.avg_after = average(sj);

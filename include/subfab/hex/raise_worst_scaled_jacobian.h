@@ -28,8 +28,8 @@
 //!   3. a step is kept only if the soft minimum rises and the smallest corner
 //!      of those hexahedra does not drop: the mesh's minimum never drops,
 //!      nothing inverts, and elements outside the patches do not change.
-//! Up to `rounds` rounds (targets recomputed), stopping when a round raises
-//! no patch's minimum. Serial, in a fixed order: deterministic.
+//! Up to `rounds` rounds (targets recomputed), stopping when a round does
+//! not raise the mesh's minimum. Serial, in a fixed order: deterministic.
 //! docs/hexmesh.md, "Worst elements".
 #pragma once
 
@@ -42,13 +42,14 @@ namespace subfab {
 
 struct RaiseWorstScaledJacobianOptions {
   double threshold = 0.5;   // hexahedra under this scaled Jacobian are the targets
-  int rings = 2;            // a patch: the targets' vertices grown by this many rings of edge neighbours
+  int rings = 3;            // a patch: the targets' vertices grown by this many rings of edge neighbours
   double sharpness = 40.0;  // beta of the soft minimum over the patch's corners (then 2x, 4x)
   int max_steps = 200;      // gradient steps per patch and round, at most
   double max_step = 0.2;    // largest step of a vertex, fraction of its mean edge
   double max_slide = 1.0;   // a boundary vertex slides at most this far from where it started, fraction of its mean edge
   double max_off_surface = 0;  // > 0: the boundary vertices of the targets may leave the surface by this fraction of their mean edge
-  std::size_t max_patches = 16;  // patches per round, at most (the worst targets first)
+  int restarts = 20;        // then again from the patch's inside relaxed by this many Jacobi iterations (0: no restart)
+  std::size_t max_patches = 8;   // patches per round, at most (the worst targets first)
   int rounds = 3;           // rounds over the targets, at most
 };
 
