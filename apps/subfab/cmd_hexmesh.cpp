@@ -106,6 +106,15 @@ nlohmann::ordered_json to_json(const HexmeshArgs& args, const Mesh& input, const
                         {"max_off_after_fraction", r.diagonal > 0 ? r.pull.max_off_after / r.diagonal : 0.0},
                         {"moves", r.pull.moves},
                         {"sweeps", r.pull.sweeps}};
+  j["worst_pass"] = {{"min_before", r.worst.min_before},
+                     {"avg_before", r.worst.avg_before},
+                     {"targets_before", r.worst.targets_before},
+                     {"targets_after", r.worst.targets_after},
+                     {"min_after", r.worst.min_after},
+                     {"avg_after", r.worst.avg_after},
+                     {"patches", r.worst.patches},
+                     {"steps", r.worst.steps},
+                     {"rounds", r.worst.rounds}};
   j["mean_pass"] = {{"enabled", !args.no_mean_pass},
                     {"avg_before", r.mean.avg_before},
                     {"min_before", r.mean.min_before},

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //! \file hex_optimizers.h
 //! Private: optimize_hex_mesh(), raise_min_scaled_jacobian(),
-//! pull_boundary_to_surface() and raise_mean_scaled_jacobian() on a surface
+//! pull_boundary_to_surface(), raise_worst_scaled_jacobian() and raise_mean_scaled_jacobian() on a surface
 //! whose projector (AABB tree and exact inside test) is already built, so
 //! that hexmesh() builds it once instead of once per level.
 #pragma once
@@ -11,6 +11,7 @@
 #include "subfab/hex/pull_boundary_to_surface.h"
 #include "subfab/hex/raise_mean_scaled_jacobian.h"
 #include "subfab/hex/raise_min_scaled_jacobian.h"
+#include "subfab/hex/raise_worst_scaled_jacobian.h"
 
 namespace subfab::detail {
 
@@ -22,6 +23,8 @@ RaiseMinScaledJacobianReport raise_min_scaled_jacobian(HexMesh& mesh, const Surf
 
 PullBoundaryReport pull_boundary_to_surface(HexMesh& mesh, const SurfaceProjector& surface,
                                             const PullBoundaryOptions& options);
+RaiseWorstScaledJacobianReport raise_worst_scaled_jacobian(HexMesh& mesh, const SurfaceProjector& surface,
+                                                           const RaiseWorstScaledJacobianOptions& options);
 RaiseMeanScaledJacobianReport raise_mean_scaled_jacobian(HexMesh& mesh, const SurfaceProjector& surface,
                                                          const RaiseMeanScaledJacobianOptions& options);
 

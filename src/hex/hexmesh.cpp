@@ -285,6 +285,11 @@ HexMeshResult hexmesh(const Mesh& surface, const Skeleton* skeleton, const HexMe
     r.pull = detail::pull_boundary_to_surface(mesh, projector, options.pull);
   }
   timer.lap("pull boundary");
+  if (options.raise_worst) {
+    StageScope stage(progress, "raise worst elements jointly");
+    r.worst = detail::raise_worst_scaled_jacobian(mesh, projector, options.worst);
+  }
+  timer.lap("raise worst jointly");
   if (options.raise_mean) {
     StageScope stage(progress, "raise average quality");
     r.mean = detail::raise_mean_scaled_jacobian(mesh, projector, options.mean);

@@ -30,7 +30,10 @@
 //!   7. raise_min_scaled_jacobian() on the final level: local optimisation of
 //!      the worst elements, boundary sliding on the surface; elements still
 //!      inverted are untangled jointly, their boundary free near the surface;
-//!   7b. raise_mean_scaled_jacobian(): the average up (a smooth soft-min
+//!   7b. pull_boundary_to_surface(), then raise_worst_scaled_jacobian(): the
+//!      patches around the hexahedra under 0.5 optimised jointly (soft
+//!      minimum, boundary sliding), the minimum never lowered;
+//!   7c. raise_mean_scaled_jacobian(): the average up (a smooth soft-min
 //!      energy over every hexahedron), no hexahedron under min(its value,
 //!      0.5), boundary sliding on the surface;
 //!   8. measures: conformity, scaled Jacobians, distance to the input.
@@ -51,6 +54,7 @@
 #include "subfab/hex/pull_boundary_to_surface.h"
 #include "subfab/hex/raise_mean_scaled_jacobian.h"
 #include "subfab/hex/raise_min_scaled_jacobian.h"
+#include "subfab/hex/raise_worst_scaled_jacobian.h"
 #include "subfab/hex/resample_skeleton.h"
 #include "subfab/hex/skeleton.h"
 
@@ -69,6 +73,8 @@ struct HexMeshOptions {
   RaiseMinScaledJacobianOptions raise;
   bool pull_boundary = true;         // then run pull_boundary_to_surface(): boundary vertices left off the surface pulled back
   PullBoundaryOptions pull;
+  bool raise_worst = true;           // then raise_worst_scaled_jacobian() (joint moves of the patches around the worst)
+  RaiseWorstScaledJacobianOptions worst;
   bool raise_mean = true;            // then raise_mean_scaled_jacobian() (the average, the minimum kept)
   RaiseMeanScaledJacobianOptions mean;
   Progress* progress = nullptr;
@@ -94,6 +100,7 @@ struct HexMeshResult {
   OptimizeHexMeshReport optimize;
   RaiseMinScaledJacobianReport raise;
   PullBoundaryReport pull;
+  RaiseWorstScaledJacobianReport worst;
   RaiseMeanScaledJacobianReport mean;
   std::vector<std::pair<std::string, double>> timings;  // seconds per stage
 };
