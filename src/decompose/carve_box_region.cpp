@@ -7,6 +7,7 @@
 
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
+#include <CGAL/Polygon_mesh_processing/repair.h>
 
 #include <algorithm>
 #include <array>
@@ -159,9 +160,11 @@ enum class RegionStatus {
 //! `cuts` make of `box` on its own: clipped, then the holes overlapping it
 //! subtracted. CGAL's corefinement requires meshes that do not
 //! self-intersect (CGAL 5.5 segfaulted in corefine_and_compute_difference
-//! on a clipped piece of couplingdown.off that touched itself): a piece
-//! whose components touch each other is split into its components first;
-//! one that touches itself stops the carve (kPinched, with the points).
+//! on a clipped piece of couplingdown.off that touched itself, and looped
+//! for ever on a piece of rotor.off with a pinched vertex, left by the
+//! previous hole's difference): pinched vertices are split, then a piece
+//! whose components touch each other is split into its components; one
+//! that touches itself stops the carve (kPinched, with the points).
 RegionStatus carve_region(const Mesh& solid, const detail::SolidIndex& index, const Box3& box,
                           const std::vector<Box3>& holes, const Cuts& cuts, std::vector<ExactMesh>& out,
                           std::vector<ExactPoint>& pinches) {
@@ -175,6 +178,7 @@ RegionStatus carve_region(const Mesh& solid, const detail::SolidIndex& index, co
         for (ExactMesh& piece : work) {
           if (piece.number_of_faces() == 0) continue;
           std::vector<ExactMesh> parts;
+          PMP::duplicate_non_manifold_vertices(piece);  // else CGAL's difference may never return
           if (detail::has_coincident_vertices(piece)) {
             pinches = pinch_points(piece);
             if (!pinches.empty()) return RegionStatus::kPinched;
