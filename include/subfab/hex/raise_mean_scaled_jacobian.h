@@ -48,8 +48,9 @@ struct RaiseMeanScaledJacobianOptions {
   double sharpness = 20.0;   // beta of the per-hexahedron soft minimum of its 8 corner determinants (dimensionless)
   double floor = 0.5;        // a move may lower a hexahedron's scaled Jacobian, but not under this (nor under the
                              // mesh's minimum; a hexahedron already under it may only rise)
-  int max_sweeps = 60;       // sweeps over every vertex, at most (25 and 2e-4 before: rocker arm .908, now .911)
-  double min_gain = 5e-5;    // stop when two sweeps in a row raise the best average scaled Jacobian by less than this
+  int max_sweeps = 25;       // sweeps over every vertex, at most (60 and 5e-5: rocker arm .911 instead of .908, but
+                             // fertility and elephant over 10 s idle)
+  double min_gain = 2e-4;    // stop when two sweeps in a row raise the best average scaled Jacobian by less than this
   int moves_per_visit = 1;   // line searches per vertex visit (2 or 3: the same quality per unit of time)
   double over_relaxation = 1.8;  // the visit's displacement times this, if still valid and lower (1: plain Gauss-Seidel)
   double active_move = 1e-3;  // after the first sweep, a vertex is visited only if a vertex of its hexahedra moved
