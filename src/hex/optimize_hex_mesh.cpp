@@ -286,7 +286,6 @@ struct Optimizer {
   static constexpr double kSmoothCap = 0.999;
 };
 
-double min_of(const std::vector<double>& sj) { return sj.empty() ? 1.0 : *std::min_element(sj.begin(), sj.end()); }
 
 //! Passes of projection, smoothing and untangling until every element is
 //! over `threshold` and every boundary vertex on the surface, or no progress
@@ -297,7 +296,7 @@ int run_passes(Optimizer& opt, const OptimizeHexMeshOptions& options, double thr
                bool smooth) {
   HexMesh& mesh = opt.mesh;
   opt.cache = detail::corner_cache(mesh);
-  double best = min_of(opt.qualities());
+  double best = min_scaled_jacobian(opt.qualities());
   double best_remaining = free_boundary ? 0.0 : opt.remaining();
   int since_progress = 0, pass = 0;
   while (pass < options.passes) {
@@ -320,7 +319,7 @@ int run_passes(Optimizer& opt, const OptimizeHexMeshOptions& options, double thr
       options.progress->update(static_cast<std::size_t>(pass), static_cast<std::size_t>(options.passes));
     // stop when done, or when neither the worst element nor the distance
     // left to the surface has improved for kPatience passes
-    const double worst_now = min_of(opt.qualities());
+    const double worst_now = min_scaled_jacobian(opt.qualities());
     const double left = free_boundary ? 0.0 : opt.remaining();
     if (worst_now >= threshold && left == 0) break;
     if (worst_now > best + kProgress || left < (1 - 1e-2) * best_remaining) {
@@ -360,7 +359,7 @@ OptimizeHexMeshReport detail::optimize_hex_mesh(HexMesh& mesh, const SurfaceProj
       if (topo.on_boundary[v])
         opt.target[v] = options.targets ? (*options.targets)[v] : projector.closest_point(mesh.vertices[v]);
     }, 512);
-    report.min_before = min_of(scaled_jacobians(mesh));
+    report.min_before = min_scaled_jacobian(scaled_jacobians(mesh));
     opt.cache = detail::corner_cache(mesh);
     if (options.guard_projection) {
       opt.project_step(options.projection_floor);
@@ -376,14 +375,14 @@ OptimizeHexMeshReport detail::optimize_hex_mesh(HexMesh& mesh, const SurfaceProj
   // leave the surface (validity first; the distance report shows the cost)
   // (kept only if it raised the worst element: it can also push a tangle
   // further apart)
-  if (const double before = min_of(scaled_jacobians(mesh)); before <= kInvertedMargin) {
+  if (const double before = min_scaled_jacobian(scaled_jacobians(mesh)); before <= kInvertedMargin) {
     const std::vector<Vec3> kept = mesh.vertices;
     const std::vector<char> kept_on_surface = opt.on_surface;
     run_passes(opt, options, kInvertedMargin, true, false);
-    if (min_of(scaled_jacobians(mesh)) <= before) mesh.vertices = kept, opt.on_surface = kept_on_surface;
+    if (min_scaled_jacobian(scaled_jacobians(mesh)) <= before) mesh.vertices = kept, opt.on_surface = kept_on_surface;
   }
   const auto sj = scaled_jacobians(mesh);
-  report.min_after = min_of(sj);
+  report.min_after = min_scaled_jacobian(sj);
   report.num_inverted = static_cast<std::size_t>(std::count_if(sj.begin(), sj.end(), [](double q) { return q <= 0; }));
   for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
     if (topo.on_boundary[v] && !opt.on_surface[v]) ++report.num_off_surface;

@@ -22,13 +22,6 @@ constexpr double kMinStep = 1e-4;    // the remembered step never shrinks under 
 constexpr int kPatience = 2;         // stop after this many sweeps in a row that raise the best average by < min_gain
 constexpr double kOnSurface = 1e-9;  // a boundary vertex within this fraction of its mean edge is on the surface
 
-double average(const std::vector<double>& q) {
-  double s = 0;
-  for (double x : q) s += x;  // serial, in hexahedron order: the same sum whatever the threads
-  return q.empty() ? 1.0 : s / static_cast<double>(q.size());
-}
-
-double minimum(const std::vector<double>& q) { return q.empty() ? 1.0 : *std::min_element(q.begin(), q.end()); }
 
 class MeanRaiser {
  public:
@@ -253,8 +246,8 @@ RaiseMeanScaledJacobianReport detail::raise_mean_scaled_jacobian(HexMesh& mesh, 
   RaiseMeanScaledJacobianReport report;
   MeanRaiser raiser(mesh, projector, options);
   std::vector<double> q = raiser.qualities();
-  report.avg_before = report.avg_after = average(q);
-  report.min_before = report.min_after = minimum(q);
+  report.avg_before = report.avg_after = mean_scaled_jacobian(q);
+  report.min_before = report.min_after = min_scaled_jacobian(q);
   raiser.set_floor(std::max(options.floor, report.min_before));
   std::vector<std::size_t> order(mesh.vertices.size());
   for (std::size_t v = 0; v < order.size(); ++v) order[v] = v;
@@ -270,14 +263,14 @@ RaiseMeanScaledJacobianReport detail::raise_mean_scaled_jacobian(HexMesh& mesh, 
     detail::run_waves(waves, [&](std::size_t v) { moved[v] = raiser.visit(v, report.sweeps); });
     for (std::size_t m : moved) report.num_moves += m;
     q = raiser.qualities();
-    const double avg = average(q);
+    const double avg = mean_scaled_jacobian(q);
     stalled = avg > best_avg + options.min_gain ? 0 : stalled + 1;
     if (avg > best_avg) best_avg = avg, best = mesh.vertices;
   }
   mesh.vertices = std::move(best);
   q = scaled_jacobians(mesh);
-  report.avg_after = average(q);
-  report.min_after = minimum(q);
+  report.avg_after = mean_scaled_jacobian(q);
+  report.min_after = min_scaled_jacobian(q);
   return report;
 }
 

@@ -287,7 +287,6 @@ class Raiser {
   detail::CornerCache cache_;                 // corner determinants and edge units (see refresh_corners)
 };
 
-double min_of(const std::vector<double>& sj) { return sj.empty() ? 1.0 : *std::min_element(sj.begin(), sj.end()); }
 
 std::size_t count_inverted(const std::vector<double>& sj) {
   return static_cast<std::size_t>(std::count_if(sj.begin(), sj.end(), [](double q) { return q <= 0; }));
@@ -307,7 +306,7 @@ struct SweepRule {
 int sweep(Raiser& raiser, HexMesh& mesh, const SweepRule& rule, std::size_t& moves) {
   const detail::HexTopology& topo = raiser.topology();
   raiser.refresh_corners();
-  double last_min = min_of(raiser.qualities());
+  double last_min = min_scaled_jacobian(raiser.qualities());
   int s = 0;
   while (s < rule.max_sweeps) {
     ++s;
@@ -333,7 +332,7 @@ int sweep(Raiser& raiser, HexMesh& mesh, const SweepRule& rule, std::size_t& mov
     const std::vector<double> after = raiser.qualities();
     double deficit_after = 0;
     for (double q : after) deficit_after += std::max(0.0, rule.threshold - q);
-    const double now = min_of(after);
+    const double now = min_scaled_jacobian(after);
     const double gain = rule.average_gain > 0 ? rule.average_gain * static_cast<double>(after.size()) : kSweepGain;
     const bool gained = now > last_min + kSweepGain || deficit_after < deficit_before - gain;
     last_min = now;
@@ -408,7 +407,7 @@ RaiseMinScaledJacobianReport detail::raise_min_scaled_jacobian(HexMesh& mesh, co
   Raiser raiser(mesh, projector);
   raiser.init_allowance();
   std::vector<double> sj = scaled_jacobians(mesh);
-  report.min_before = min_of(sj);
+  report.min_before = min_scaled_jacobian(sj);
   report.num_inverted_before = count_inverted(sj);
   report.sweeps = sweep(raiser, mesh, {options.threshold, options.sweeps, false}, report.num_moves);
   sj = scaled_jacobians(mesh);
@@ -426,14 +425,14 @@ RaiseMinScaledJacobianReport detail::raise_min_scaled_jacobian(HexMesh& mesh, co
                                                   raiser.distance_to_surface(mesh.vertices[idx(v)])));
     const std::vector<Vec3> kept = mesh.vertices;
     std::vector<Vec3> best = kept;
-    double best_min = min_of(sj);
+    double best_min = min_scaled_jacobian(sj);
     for (const Repair& repair : kRepairs) {
       mesh.vertices = kept;
       const std::vector<std::size_t> patch = repair_patch(raiser, mesh, sj, repair.rings, margin);
       if (repair.laplacian > 0) relax_patch_interior(raiser, mesh, patch, repair.laplacian);
       report.untangle_steps += raiser.untangle_patch(patch, kUntangleSteps);
       report.sweeps += sweep(raiser, mesh, {margin, options.sweeps, true}, report.num_moves);
-      const double now = min_of(scaled_jacobians(mesh));
+      const double now = min_scaled_jacobian(scaled_jacobians(mesh));
       if (now > best_min) best_min = now, best = mesh.vertices;
       if (best_min > margin) break;
     }
@@ -442,10 +441,10 @@ RaiseMinScaledJacobianReport detail::raise_min_scaled_jacobian(HexMesh& mesh, co
     for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
       if (topo.on_boundary[v] && (mesh.vertices[v] - kept[v]).squaredNorm() > 0) ++report.num_off_surface;
   };
-  if (options.free_boundary_for_inverted && min_of(sj) <= kMargin) repair_worst(kMargin);
+  if (options.free_boundary_for_inverted && min_scaled_jacobian(sj) <= kMargin) repair_worst(kMargin);
   // few elements still under repair_below: the same joint repair (a local
   // fold of the boundary's quad layout that one vertex at a time cannot open)
-  if (const double below = options.repair_below; below > kMargin && min_of(sj) <= below) {
+  if (const double below = options.repair_below; below > kMargin && min_scaled_jacobian(sj) <= below) {
     const auto n = std::count_if(sj.begin(), sj.end(), [below](double q) { return q <= below; });
     if (static_cast<std::size_t>(n) <= options.repair_max_hexes) {
       repair_worst(below);
@@ -474,7 +473,7 @@ RaiseMinScaledJacobianReport detail::raise_min_scaled_jacobian(HexMesh& mesh, co
     for (std::size_t v = 0; v < before.size(); ++v)
       if (raiser.loose(v) && (mesh.vertices[v] - before[v]).squaredNorm() > 0) ++report.num_loose_moved;
   }
-  report.min_after = min_of(sj);
+  report.min_after = min_scaled_jacobian(sj);
   report.num_inverted_after = count_inverted(sj);
   return report;
 }

@@ -21,12 +21,6 @@ constexpr double kOnSurface = 1e-9;  // a boundary vertex within this fraction o
 constexpr int kHalvings = 12;        // backtracking: step lengths 1, 1/2, ... of the scaled gradient
 constexpr int kContinuation = 3;     // sharpness, 2x, 4x
 
-double min_of(const std::vector<double>& q) { return q.empty() ? 1.0 : *std::min_element(q.begin(), q.end()); }
-double average(const std::vector<double>& q) {
-  double s = 0;
-  for (double x : q) s += x;  // serial, in hexahedron order
-  return q.empty() ? 1.0 : s / static_cast<double>(q.size());
-}
 
 class WorstRaiser {
  public:
@@ -75,7 +69,7 @@ class WorstRaiser {
     std::vector<Vec3> original(patch.size());
     for (std::size_t i = 0; i < patch.size(); ++i) original[i] = mesh_.vertices[patch[i]];
     evaluate();
-    const double first = min_of(alpha_);
+    const double first = min_scaled_jacobian(alpha_);
     double result = ascend(patch, steps);
     if (options_.restarts > 0) {
       std::vector<Vec3> kept(patch.size());
@@ -131,7 +125,7 @@ class WorstRaiser {
     int level = 0;  // of the continuation: beta = sharpness x 2^level
     evaluate();
     double value = soft_min(beta);
-    double worst = min_of(alpha_);
+    double worst = min_scaled_jacobian(alpha_);
     double last_t = 1e300;
     std::vector<Vec3> best(patch.size());
     for (std::size_t i = 0; i < patch.size(); ++i) best[i] = mesh_.vertices[patch[i]];
@@ -172,7 +166,7 @@ class WorstRaiser {
             mesh_.vertices[patch[i]] = place(patch[i], start[i], start[i] + t * dir[i]);
           {
             evaluate();
-            const double now = min_of(alpha_);
+            const double now = min_scaled_jacobian(alpha_);
             const double soft = soft_min(beta);
             if (soft > value + 1e-12 * std::abs(value)) {
               value = soft, moved = true, last_t = t;
@@ -222,14 +216,14 @@ class WorstRaiser {
   }
   //! -1/beta log sum exp(-beta alpha), shifted by the minimum.
   double soft_min(double beta) const {
-    const double m = min_of(alpha_);
+    const double m = min_scaled_jacobian(alpha_);
     double s = 0;
     for (double a : alpha_) s += std::exp(-beta * (a - m));
     return m - std::log(s) / beta;
   }
   //! d soft_min / d alpha_c for every corner.
   void weights(double beta) {
-    const double m = min_of(alpha_);
+    const double m = min_scaled_jacobian(alpha_);
     weight_.resize(alpha_.size());
     double s = 0;
     for (std::size_t c = 0; c < alpha_.size(); ++c) s += weight_[c] = std::exp(-beta * (alpha_[c] - m));
@@ -292,8 +286,8 @@ RaiseWorstScaledJacobianReport detail::raise_worst_scaled_jacobian(HexMesh& mesh
                                                                    const RaiseWorstScaledJacobianOptions& options) {
   RaiseWorstScaledJacobianReport report;
   std::vector<double> sj = scaled_jacobians(mesh);
-  report.min_before = report.min_after = min_of(sj);
-  report.avg_before = report.avg_after = average(sj);
+  report.min_before = report.min_after = min_scaled_jacobian(sj);
+  report.avg_before = report.avg_after = mean_scaled_jacobian(sj);
   report.targets_before = report.targets_after = count_below(sj, options.threshold);
   if (report.targets_before == 0) return report;
   WorstRaiser raiser(mesh, projector, options);
@@ -303,16 +297,16 @@ RaiseWorstScaledJacobianReport detail::raise_worst_scaled_jacobian(HexMesh& mesh
         for (int v : mesh.hexes[h]) raiser.loosen(idx(v), options.max_off_surface);
   while (report.rounds < options.rounds) {
     ++report.rounds;
-    const double before = min_of(sj);
+    const double before = min_scaled_jacobian(sj);
     for (const auto& patch : patches(mesh, raiser.topology(), sj, options.threshold, options.rings, options.max_patches)) {
       raiser.raise(patch, report.steps);
       ++report.patches;
     }
     sj = scaled_jacobians(mesh);
-    if (!(min_of(sj) > before)) break;  // the worst element did not rise: another round would not lift it
+    if (!(min_scaled_jacobian(sj) > before)) break;  // the worst element did not rise: another round would not lift it
   }
-  report.min_after = min_of(sj);
-  report.avg_after = average(sj);
+  report.min_after = min_scaled_jacobian(sj);
+  report.avg_after = mean_scaled_jacobian(sj);
   report.targets_after = count_below(sj, options.threshold);
   return report;
 }

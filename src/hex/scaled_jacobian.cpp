@@ -35,4 +35,14 @@ std::vector<double> scaled_jacobians(const HexMesh& mesh) {
   return out;
 }
 
+double min_scaled_jacobian(const std::vector<double>& sj) {
+  return sj.empty() ? 1.0 : *std::min_element(sj.begin(), sj.end());
+}
+
+double mean_scaled_jacobian(const std::vector<double>& sj) {
+  double s = 0;
+  for (double x : sj) s += x;
+  return sj.empty() ? 1.0 : s / static_cast<double>(sj.size());
+}
+
 }  // namespace subfab

@@ -24,6 +24,13 @@ double scaled_jacobian(const HexMesh& mesh, std::size_t h);
 //! Scaled Jacobian of every hexahedron (in parallel, deterministic).
 std::vector<double> scaled_jacobians(const HexMesh& mesh);
 
+//! The smallest of `sj` (1 when empty: a mesh without hexahedra has no bad one).
+double min_scaled_jacobian(const std::vector<double>& sj);
+
+//! The mean of `sj`, summed serially in hexahedron order (the same value
+//! whatever the thread count); 1 when empty.
+double mean_scaled_jacobian(const std::vector<double>& sj);
+
 //! The three neighbours of corner i (VTK order) such that
 //! det(p[n0]-p[i], p[n1]-p[i], p[n2]-p[i]) > 0 for a positively oriented hex.
 inline constexpr std::array<std::array<int, 3>, 8> kHexCornerNeighbors{{
