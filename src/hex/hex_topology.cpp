@@ -3,6 +3,8 @@
 
 #include <algorithm>
 
+#include "hex/surface_projector.h"
+
 namespace subfab::detail {
 
 HexTopology hex_topology(const HexMesh& mesh) {
@@ -32,6 +34,24 @@ HexTopology hex_topology(const HexMesh& mesh) {
       l.erase(std::unique(l.begin(), l.end()), l.end());
     }
   return t;
+}
+
+VertexAllowances vertex_allowances(const HexMesh& mesh, const HexTopology& topo, const SurfaceProjector& surface,
+                                   double on_surface) {
+  const std::size_t n = mesh.vertices.size();
+  VertexAllowances a;
+  a.scale.assign(n, 0.0);
+  a.allowance.assign(n, -1.0);
+  for (std::size_t v = 0; v < n; ++v) {
+    double s = 0;
+    for (int w : topo.neighbors[v]) s += (mesh.vertices[static_cast<std::size_t>(w)] - mesh.vertices[v]).norm();
+    a.scale[v] = s / static_cast<double>(std::max<std::size_t>(1, topo.neighbors[v].size()));
+    if (topo.on_boundary[v]) {
+      const double d = (surface.closest_point(mesh.vertices[v]) - mesh.vertices[v]).norm();
+      a.allowance[v] = d > on_surface * a.scale[v] ? d : 0.0;
+    }
+  }
+  return a;
 }
 
 }  // namespace subfab::detail

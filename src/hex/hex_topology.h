@@ -19,6 +19,20 @@ struct HexTopology {
 
 HexTopology hex_topology(const HexMesh& mesh);
 
+class SurfaceProjector;
+
+//! Per vertex, what the vertex optimisers need to move it: `scale`, the mean
+//! length of its edges; `allowance`, for a boundary vertex, 0 when it lies
+//! within on_surface x scale of the surface (it then slides on the surface),
+//! else its distance from the surface (it may never go farther); -1 for an
+//! inner vertex.
+struct VertexAllowances {
+  std::vector<double> scale;
+  std::vector<double> allowance;
+};
+VertexAllowances vertex_allowances(const HexMesh& mesh, const HexTopology& topo, const SurfaceProjector& surface,
+                                   double on_surface = 1e-9);
+
 //! The 12 edges of a hexahedron as local corner pairs.
 inline constexpr int kHexEdges[12][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6},
                                          {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};

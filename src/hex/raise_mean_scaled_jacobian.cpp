@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "hex/gauss_seidel_schedule.h"
@@ -28,21 +29,13 @@ class MeanRaiser {
   MeanRaiser(HexMesh& mesh, const detail::SurfaceProjector& surface, const RaiseMeanScaledJacobianOptions& options)
       : mesh_(mesh), surface_(surface), options_(options), topo_(detail::hex_topology(mesh)) {
     const std::size_t n = mesh.vertices.size();
-    scale_.assign(n, 0.0);
+    detail::VertexAllowances a = detail::vertex_allowances(mesh, topo_, surface, kOnSurface);
+    scale_ = std::move(a.scale);
+    allowance_ = std::move(a.allowance);  // 0: slides on the surface
     step_.assign(n, 0.0);
+    for (std::size_t v = 0; v < n; ++v) step_[v] = kFirstStep * scale_[v];
     last_move_.assign(n, 0);
     origin_ = mesh.vertices;
-    allowance_.assign(n, -1.0);
-    for (std::size_t v = 0; v < n; ++v) {
-      double s = 0;
-      for (int w : topo_.neighbors[v]) s += (mesh.vertices[idx(w)] - mesh.vertices[v]).norm();
-      scale_[v] = s / static_cast<double>(std::max<std::size_t>(1, topo_.neighbors[v].size()));
-      step_[v] = kFirstStep * scale_[v];
-      if (topo_.on_boundary[v]) {
-        const double d = (surface.closest_point(mesh.vertices[v]) - mesh.vertices[v]).norm();
-        allowance_[v] = d > kOnSurface * scale_[v] ? d : 0.0;  // 0: slides on the surface
-      }
-    }
     cache_ = detail::corner_cache(mesh);
   }
 

@@ -32,18 +32,9 @@ class WorstRaiser {
         corners_(detail::vertex_corners(mesh)),
         origin_(mesh.vertices),
         slot_(mesh.hexes.size(), -1) {
-    const std::size_t n = mesh.vertices.size();
-    scale_.assign(n, 0.0);
-    allowance_.assign(n, -1.0);
-    for (std::size_t v = 0; v < n; ++v) {
-      double s = 0;
-      for (int w : topo_.neighbors[v]) s += (mesh.vertices[idx(w)] - mesh.vertices[v]).norm();
-      scale_[v] = s / static_cast<double>(std::max<std::size_t>(1, topo_.neighbors[v].size()));
-      if (topo_.on_boundary[v]) {
-        const double d = (surface.closest_point(mesh.vertices[v]) - mesh.vertices[v]).norm();
-        allowance_[v] = d > kOnSurface * scale_[v] ? d : 0.0;  // 0: slides on the surface
-      }
-    }
+    detail::VertexAllowances a = detail::vertex_allowances(mesh, topo_, surface, kOnSurface);
+    scale_ = std::move(a.scale);
+    allowance_ = std::move(a.allowance);  // 0: slides on the surface
   }
 
   const detail::HexTopology& topology() const { return topo_; }
