@@ -247,7 +247,11 @@ HexMeshResult hexmesh(const Mesh& surface, const Skeleton* skeleton, const HexMe
   int offset = options.subdivisions;
   if (offset < 0) {
     offset = 1;
-    while (planned_num_hexes(r.resolution, offset + 1) <= options.max_hexes) ++offset;
+    if (options.keep_layers)  // the finest level splits across the tubes only: count it exactly
+      while (num_hexes_keeping_layers(mesh, r.resolution, offset + 1, options.keep_layers_share) <= options.max_hexes)
+        ++offset;
+    else
+      while (planned_num_hexes(r.resolution, offset + 1) <= options.max_hexes) ++offset;
   }
   r.min_subdivisions = offset;
   RefinementSchedule schedule = schedule_refinement(r.resolution, offset, r.subdivisions);
@@ -265,7 +269,12 @@ HexMeshResult hexmesh(const Mesh& surface, const Skeleton* skeleton, const HexMe
     std::vector<Vec3> targets;
     {
       StageScope stage(progress, "subdivide");
-      mesh = refine_hex_mesh(mesh, schedule, i + 1);
+      if (options.keep_layers && i + 1 == r.subdivisions) {
+        const auto axes = layer_keeping_axes(mesh, schedule, i + 1, options.keep_layers_share, &r.kept_layer_sheets);
+        mesh = refine_hex_mesh(mesh, schedule, i + 1, &axes);
+      } else {
+        mesh = refine_hex_mesh(mesh, schedule, i + 1);
+      }
       targets = radial_targets(mesh, projector);
     }
     oo.targets = &targets;
