@@ -301,7 +301,12 @@ HexMeshResult hexmesh(const Mesh& surface, const Skeleton* skeleton, const HexMe
   timer.lap("raise worst jointly");
   if (options.raise_mean) {
     StageScope stage(progress, "raise average quality");
-    r.mean = detail::raise_mean_scaled_jacobian(mesh, projector, options.mean);
+    RaiseMeanScaledJacobianOptions mo = options.mean;
+    if (mesh.hexes.size() <= options.long_mean_pass_hexes) {  // small meshes: more sweeps within the time target
+      mo.max_sweeps = std::max(mo.max_sweeps, options.long_mean_pass_sweeps);
+      mo.min_gain = std::min(mo.min_gain, options.long_mean_pass_min_gain);
+    }
+    r.mean = detail::raise_mean_scaled_jacobian(mesh, projector, mo);
   }
   timer.lap("raise average quality");
   {
