@@ -32,6 +32,7 @@ struct HexmeshArgs {
   bool scaling = false;
   bool no_scaling = false;
   bool no_mean_pass = false;
+  bool keep_layers = false;
   bool no_view = false;
   int subdivisions = -1;
   std::size_t max_hexes = HexMeshOptions{}.max_hexes;
@@ -53,6 +54,7 @@ nlohmann::ordered_json to_json(const HexmeshArgs& args, const Mesh& input, const
   j["structure_hexahedra"] = r.structure.num_hexes();
   j["subdivisions"] = r.subdivisions;
   j["min_subdivisions"] = r.min_subdivisions;
+  j["keep_layers"] = {{"enabled", args.keep_layers}, {"sheets_kept", r.kept_layer_sheets}};
   {  // D.5: the cones found and used, the integer programme
     const ResolutionPlan& p = r.resolution;
     nlohmann::ordered_json rc;
@@ -158,6 +160,7 @@ int run_hexmesh(const HexmeshArgs& args) {
   options.resolution_control = !args.no_scaling;
   options.max_hexes = args.max_hexes;
   options.raise_mean = !args.no_mean_pass;
+  options.keep_layers = args.keep_layers;
   HexMeshResult result;
   try {
     result = hexmesh(mesh, args.skeleton.empty() ? nullptr : &skeleton, options);
@@ -231,6 +234,10 @@ void add_hexmesh_options(CLI::App& sub, HexmeshArgs& args) {
   sub.add_flag("--no-mean-pass", args.no_mean_pass,
                "Skip the last stage that raises the average scaled Jacobian (raise_mean_scaled_jacobian, the "
                "minimum kept); for comparison");
+  sub.add_flag("--keep-layers", args.keep_layers,
+               "The finest level splits across the tubes only (their layers along the skeleton are left whole, "
+               "fewer hexahedra touching the structure's irregular edges); the automatic number of levels counts "
+               "it. With --no-scaling: cactus 3488 hexahedra, SJ .923 / .620 (docs/hexmesh.md)");
   sub.add_flag("--no-view", args.no_view,
                "Do not write OUTDIR/view.html (the cells coloured by scaled Jacobian in 3D in a browser)");
   sub.add_option("--subdivisions", args.subdivisions,

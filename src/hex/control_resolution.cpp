@@ -296,11 +296,15 @@ RefinementSchedule schedule_refinement(const ResolutionPlan& plan, int offset, i
   return s;
 }
 
-HexMesh refine_hex_mesh(const HexMesh& mesh, RefinementSchedule& schedule, int level) {
+HexMesh refine_hex_mesh(const HexMesh& mesh, RefinementSchedule& schedule, int level,
+                        const std::vector<std::array<bool, 3>>* axes) {
   if (schedule.first_level.size() != mesh.hexes.size() || schedule.cone_slot.size() != mesh.hexes.size() ||
       schedule.template_of.size() != mesh.hexes.size())
     throw InvalidArgumentError("refine_hex_mesh: the schedule has " + std::to_string(schedule.first_level.size()) +
                                " entries for " + std::to_string(mesh.hexes.size()) + " hexahedra");
+  if (axes && axes->size() != mesh.hexes.size())
+    throw InvalidArgumentError("refine_hex_mesh: " + std::to_string(axes->size()) + " axis flags for " +
+                               std::to_string(mesh.hexes.size()) + " hexahedra");
   // the current hexahedra of the layers that get their template now
   std::map<int, std::array<Hex, 5>> cells;
   for (std::size_t h = 0; h < mesh.hexes.size(); ++h) {
@@ -320,7 +324,8 @@ HexMesh refine_hex_mesh(const HexMesh& mesh, RefinementSchedule& schedule, int l
       if (slot % 5 == 0) detail::add_cone_template(mesh, schedule.layers[idx(slot / 5)], cells.at(slot / 5), splitter, out);
       child_first = level + 1;  // the pieces split with the tip side
     } else if (slot < 0 && first <= level) {
-      splitter.split(mesh.hexes[h]);
+      if (axes) splitter.split(mesh.hexes[h], (*axes)[h]);
+      else splitter.split(mesh.hexes[h]);
     } else {
       out.hexes.push_back(mesh.hexes[h]);
       child_slot = slot;

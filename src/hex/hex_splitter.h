@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //! \file hex_splitter.h
-//! Private: the regular 2 x 2 x 2 split of hexahedra into a new mesh, with
+//! Private: the regular 2 x 2 x 2 split of hexahedra (or along some of their axes: split_hex_sheets()) into a new mesh, with
 //! edge midpoints and face centres shared between neighbours (keyed by the
 //! old vertex indices), so that the hexahedra split in one pass stay
 //! conforming with each other and with any template that asks for the same
@@ -26,6 +26,10 @@ class HexSplitter {
   int face(int a, int b, int c, int d);
   //! Appends the 8 children of h to `out` (trilinear positions).
   void split(const Hex& h);
+  //! Splits h in two along each local axis i (0: corner 0 -> 1, 1: 0 -> 3,
+  //! 2: 0 -> 4) with axes[i] set, 1 to 8 children (in the order of split(),
+  //! i fastest), positions trilinear; all three set is split(h).
+  void split(const Hex& h, const std::array<bool, 3>& axes);
 
  private:
   const HexMesh& in_;

@@ -247,7 +247,11 @@ HexMeshResult hexmesh(const Mesh& surface, const Skeleton* skeleton, const HexMe
   int offset = options.subdivisions;
   if (offset < 0) {
     offset = 1;
-    while (planned_num_hexes(r.resolution, offset + 1) <= options.max_hexes) ++offset;
+    if (options.keep_layers)  // the finest level splits across the tubes only: count it exactly
+      while (num_hexes_keeping_layers(mesh, r.resolution, offset + 1, options.keep_layers_share) <= options.max_hexes)
+        ++offset;
+    else
+      while (planned_num_hexes(r.resolution, offset + 1) <= options.max_hexes) ++offset;
   }
   r.min_subdivisions = offset;
   RefinementSchedule schedule = schedule_refinement(r.resolution, offset, r.subdivisions);
@@ -265,7 +269,12 @@ HexMeshResult hexmesh(const Mesh& surface, const Skeleton* skeleton, const HexMe
     std::vector<Vec3> targets;
     {
       StageScope stage(progress, "subdivide");
-      mesh = refine_hex_mesh(mesh, schedule, i + 1);
+      if (options.keep_layers && i + 1 == r.subdivisions) {
+        const auto axes = layer_keeping_axes(mesh, schedule, i + 1, options.keep_layers_share, &r.kept_layer_sheets);
+        mesh = refine_hex_mesh(mesh, schedule, i + 1, &axes);
+      } else {
+        mesh = refine_hex_mesh(mesh, schedule, i + 1);
+      }
       targets = radial_targets(mesh, projector);
     }
     oo.targets = &targets;
@@ -292,7 +301,12 @@ HexMeshResult hexmesh(const Mesh& surface, const Skeleton* skeleton, const HexMe
   timer.lap("raise worst jointly");
   if (options.raise_mean) {
     StageScope stage(progress, "raise average quality");
-    r.mean = detail::raise_mean_scaled_jacobian(mesh, projector, options.mean);
+    RaiseMeanScaledJacobianOptions mo = options.mean;
+    if (mesh.hexes.size() <= options.long_mean_pass_hexes) {  // small meshes: more sweeps within the time target
+      mo.max_sweeps = std::max(mo.max_sweeps, options.long_mean_pass_sweeps);
+      mo.min_gain = std::min(mo.min_gain, options.long_mean_pass_min_gain);
+    }
+    r.mean = detail::raise_mean_scaled_jacobian(mesh, projector, mo);
   }
   timer.lap("raise average quality");
   {

@@ -97,6 +97,57 @@ TEST(ControlResolution, WithoutConesEveryLevelIsTheRegularSplit) {
   EXPECT_EQ(m.vertices, regular.vertices);
 }
 
+// The finest level keeping the layers on the ideal padded tube (6 layers):
+// its 6 layer sheets (5 hexahedra each, all with a valence-3 edge of the
+// core's corners along the sheet) are left whole, so the 30 hexahedra of the
+// layers split in 4 (across the tube only) and the 2 end caps in 8: 136
+// instead of 256, conforming, the elements as good as the regular split's;
+// the count that chooses the levels is the same. The chords (8 of their 20
+// hexahedra have such an edge along them, at the ends) and the pillow split.
+TEST(ControlResolution, FinestLevelKeepingTheLayersSplitsAcrossTheTubeOnly) {
+  const HexMesh padded = padded_tube(6);
+  const ResolutionPlan plan = control_resolution(padded, {});
+  int levels = 0;
+  RefinementSchedule s = schedule_refinement(plan, 1, levels);
+  ASSERT_EQ(levels, 1);
+  std::size_t kept = 0;
+  const auto axes = layer_keeping_axes(padded, s, 1, 0.5, &kept);
+  EXPECT_EQ(kept, 6u);
+  const HexMesh m = refine_hex_mesh(padded, s, 1, &axes);
+  EXPECT_EQ(m.hexes.size(), 30u * 4u + 2u * 8u);
+  EXPECT_EQ(num_hexes_keeping_layers(padded, plan, 1, 0.5), m.hexes.size());
+  EXPECT_TRUE(check_hex_mesh(m).valid());
+  EXPECT_NEAR(min_sj(m), min_sj(subdivide_hex_mesh(padded)), 1e-12);
+  // two levels: the first splits everything (12 layers of 20 hexahedra, 12 of
+  // them at the core's corners), the second keeps them
+  EXPECT_EQ(num_hexes_keeping_layers(padded, plan, 2, 0.5), 240u * 4u + 16u * 8u);
+  // with a share over 1 nothing is kept: the regular split
+  EXPECT_EQ(num_hexes_keeping_layers(padded, plan, 1, 1.5), 256u);
+}
+
+// With a cone, the sheets of the template layer and of the hexahedra not
+// due at the finest level are never left whole (the level stays conforming).
+TEST(ControlResolution, FinestLevelKeepingTheLayersLeavesConesAlone) {
+  const HexMesh padded = padded_tube(3);
+  const ResolutionPlan plan = control_resolution(padded, {Cone{1, 0, 5.0, false}});  // tip up: base at 0
+  ASSERT_TRUE(plan.solved);
+  int levels = 0;
+  RefinementSchedule s = schedule_refinement(plan, 1, levels);
+  HexMesh m = padded;
+  for (int level = 1; level <= levels; ++level) {
+    std::size_t kept = 0;
+    const auto axes = layer_keeping_axes(m, s, level, 0.5, &kept);
+    m = refine_hex_mesh(m, s, level, level == levels ? &axes : nullptr);
+    EXPECT_TRUE(check_hex_mesh(m).valid()) << "level " << level;
+    if (level == levels) {
+      EXPECT_GT(kept, 0u);
+    }
+  }
+  EXPECT_EQ(num_hexes_keeping_layers(padded, plan, 1, 0.5), m.hexes.size());
+  EXPECT_LT(m.hexes.size(), planned_num_hexes(plan, 1));
+  EXPECT_GT(min_sj(m), 0.1);
+}
+
 //! A straight skeleton along x from -h to h whose radius goes linearly from
 //! r0 to r1, densely sampled.
 Skeleton tapered_line(double h, double r0, double r1, int n = 61) {

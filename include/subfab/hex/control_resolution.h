@@ -133,6 +133,26 @@ RefinementSchedule schedule_refinement(const ResolutionPlan& plan, int offset, i
 //! level on), the others are copied. Old vertices keep their indices; new
 //! ones are placed by trilinear interpolation. `schedule` is updated to the
 //! new mesh. When every hexahedron splits the result is subdivide_hex_mesh().
-HexMesh refine_hex_mesh(const HexMesh& mesh, RefinementSchedule& schedule, int level);
+//! `axes`, if given (one per hexahedron), says along which local axes each
+//! regular hexahedron splits (see split_hex_sheets(): it must be the same
+//! for every hexahedron of a sheet, so that the level stays conforming).
+HexMesh refine_hex_mesh(const HexMesh& mesh, RefinementSchedule& schedule, int level,
+                        const std::vector<std::array<bool, 3>>* axes = nullptr);
+
+//! The finest level keeping the tubes' layers (not in the thesis; issue 14,
+//! docs/hexmesh.md "4c"): the axes along which each hexahedron of `mesh`
+//! splits at `level` (for refine_hex_mesh()). A sheet (hex_sheets()) is
+//! left whole when at least `min_share` of its hexahedra have an irregular
+//! interior edge along its axis (sheet_irregularity(): a tube's layer,
+//! whose hexahedra all touch the valence-3 edges of its core's corners) and
+//! every one of its hexahedra splits regularly at `level`; every other axis
+//! splits. `num_kept`, if given, gets the sheets left whole.
+std::vector<std::array<bool, 3>> layer_keeping_axes(const HexMesh& mesh, const RefinementSchedule& schedule, int level,
+                                                    double min_share, std::size_t* num_kept = nullptr);
+
+//! The hexahedra of `plan` with `offset` (schedule_refinement()) when its
+//! finest level keeps the layers (layer_keeping_axes()): the levels applied
+//! to the topology of `padded` (the positions do not matter), exact.
+std::size_t num_hexes_keeping_layers(const HexMesh& padded, const ResolutionPlan& plan, int offset, double min_share);
 
 }  // namespace subfab

@@ -23,7 +23,8 @@
 //!      untangling), then level by level: refine_hex_mesh() (regular
 //!      2 x 2 x 2 splits of the hexahedra due at that level, cone templates;
 //!      without cones every hexahedron splits at every level, as
-//!      subdivide_hex_mesh()), a target on the surface for each boundary
+//!      subdivide_hex_mesh(); with `keep_layers` the finest level leaves the
+//!      tubes' layers whole, layer_keeping_axes()), a target on the surface for each boundary
 //!      vertex along its padding edge, optimize_hex_mesh() again, which moves
 //!      the boundary there in steps that keep the elements valid (smoothing
 //!      on the last level);
@@ -68,6 +69,11 @@ struct HexMeshOptions {
   ResolutionControlOptions resolution;
   int subdivisions = -1;             // regular splits of the least split hexahedra (all of them without cones); -1: the most that keeps <= max_hexes
   std::size_t max_hexes = 20000;     // bound for the automatic choice (at least one split is always made)
+  //! the finest level splits across the tubes only: the sheets where at least keep_layers_share of the
+  //! hexahedra have an irregular edge along the sheet (a tube's layers) are left whole
+  //! (layer_keeping_axes(); the automatic choice of levels counts it); off: every hexahedron due splits 2x2x2
+  bool keep_layers = false;
+  double keep_layers_share = 0.5;
   OptimizeHexMeshOptions optimize;
   bool raise_min = true;             // run raise_min_scaled_jacobian() on the final level
   RaiseMinScaledJacobianOptions raise;
@@ -77,6 +83,12 @@ struct HexMeshOptions {
   RaiseWorstScaledJacobianOptions worst;
   bool raise_mean = true;            // then raise_mean_scaled_jacobian() (the average, the minimum kept)
   RaiseMeanScaledJacobianOptions mean;
+  //! meshes of at most long_mean_pass_hexes hexahedra get a longer average pass: at least
+  //! long_mean_pass_sweeps sweeps, min gain at most long_mean_pass_min_gain (rocker arm, 3840
+  //! hexahedra: .908 -> .911; the larger models keep 25 sweeps, the 10 s target)
+  std::size_t long_mean_pass_hexes = 5000;
+  int long_mean_pass_sweeps = 60;
+  double long_mean_pass_min_gain = 5e-5;
   Progress* progress = nullptr;
 };
 
@@ -91,6 +103,7 @@ struct HexMeshResult {
   HexMeshCheck check;
   int subdivisions = 0;     // levels of the coarse-to-fine refinement (the splits of the most split hexahedra)
   int min_subdivisions = 0; // splits of the least split hexahedra (= subdivisions without cones)
+  std::size_t kept_layer_sheets = 0;  // sheets the finest level left whole (keep_layers)
   std::vector<Cone> cones_found;  // D.5.1, before the integer programme
   ResolutionPlan resolution;      // D.5.2 (splits per hexahedron of the padded structure, cone layers used)
   double min_sj = 0, avg_sj = 0, max_sj = 0;
