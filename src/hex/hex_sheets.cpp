@@ -6,15 +6,12 @@
 #include <numeric>
 #include <utility>
 
+#include "hex/hex_topology.h"
+
 namespace subfab {
 namespace {
 
 std::size_t idx(int v) { return static_cast<std::size_t>(v); }
-
-//! The four edges of a hexahedron along each local axis (VTK corners).
-constexpr int kAxisEdges[3][4][2] = {{{0, 1}, {3, 2}, {4, 5}, {7, 6}},
-                                     {{0, 3}, {1, 2}, {4, 7}, {5, 6}},
-                                     {{0, 4}, {1, 5}, {2, 6}, {3, 7}}};
 
 int find(std::vector<int>& parent, int x) {
   while (parent[idx(x)] != x) {
@@ -31,14 +28,16 @@ HexSheets hex_sheets(const HexMesh& mesh) {
   // edges of their faces (union-find)
   std::map<std::pair<int, int>, int> edge_id;
   std::vector<std::array<std::array<int, 4>, 3>> hex_edges(mesh.hexes.size());
-  for (std::size_t h = 0; h < mesh.hexes.size(); ++h)
-    for (int a = 0; a < 3; ++a)
-      for (int e = 0; e < 4; ++e) {
-        const int u = mesh.hexes[h][idx(kAxisEdges[a][e][0])], v = mesh.hexes[h][idx(kAxisEdges[a][e][1])];
-        const auto it = edge_id.emplace(std::make_pair(std::min(u, v), std::max(u, v)),
-                                        static_cast<int>(edge_id.size())).first;
-        hex_edges[h][idx(a)][idx(e)] = it->second;
-      }
+  for (std::size_t h = 0; h < mesh.hexes.size(); ++h) {
+    std::array<int, 3> filled{};  // edges of h stored per axis so far
+    for (int e = 0; e < 12; ++e) {
+      const int u = mesh.hexes[h][idx(detail::kHexEdges[e][0])], v = mesh.hexes[h][idx(detail::kHexEdges[e][1])];
+      const auto it = edge_id.emplace(std::make_pair(std::min(u, v), std::max(u, v)),
+                                      static_cast<int>(edge_id.size())).first;
+      const int a = detail::kHexEdgeAxis[e];
+      hex_edges[h][idx(a)][idx(filled[idx(a)]++)] = it->second;
+    }
+  }
   std::vector<int> parent(edge_id.size());
   std::iota(parent.begin(), parent.end(), 0);
   for (const auto& he : hex_edges)

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //! \file hex_splitter.h
-//! Private: the regular 2 x 2 x 2 split of hexahedra (or along some of their axes: split_hex_sheets()) into a new mesh, with
+//! Private: the regular 2 x 2 x 2 split of hexahedra (or along some of their axes: layer_keeping_axes()) into a new mesh, with
 //! edge midpoints and face centres shared between neighbours (keyed by the
 //! old vertex indices), so that the hexahedra split in one pass stay
 //! conforming with each other and with any template that asks for the same

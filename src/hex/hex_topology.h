@@ -36,5 +36,8 @@ VertexAllowances vertex_allowances(const HexMesh& mesh, const HexTopology& topo,
 //! The 12 edges of a hexahedron as local corner pairs.
 inline constexpr int kHexEdges[12][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6},
                                          {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+//! The local axis of each edge of kHexEdges (0: corner 0 -> 1, 1: 0 -> 3,
+//! 2: 0 -> 4).
+inline constexpr int kHexEdgeAxis[12] = {0, 1, 0, 1, 0, 1, 0, 1, 2, 2, 2, 2};
 
 }  // namespace subfab::detail

@@ -15,8 +15,6 @@ namespace {
 
 std::size_t idx(int v) { return static_cast<std::size_t>(v); }
 
-//! kHexEdges index -> local axis (0: corner 0 -> 1, 1: 0 -> 3, 2: 0 -> 4)
-constexpr int kEdgeAxis[12] = {0, 1, 0, 1, 0, 1, 0, 1, 2, 2, 2, 2};
 //! local coordinates of the VTK corners along the three axes
 constexpr int kCorner[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
 
@@ -50,7 +48,7 @@ SheetIrregularity sheet_irregularity(const HexMesh& mesh, const HexSheets& sheet
       const auto key = edge_key(mesh.hexes[h][idx(u)], mesh.hexes[h][idx(v)]);
       if (valence.at(key) == 4 || boundary.count(key)) continue;
       for (int a = 0; a < 3; ++a) {
-        if (a == kEdgeAxis[e]) along[idx(a)] = true;
+        if (a == detail::kHexEdgeAxis[e]) along[idx(a)] = true;
         else (kCorner[u][a] == 0 ? low : high)[idx(a)] = true;
       }
     }

@@ -134,7 +134,7 @@ RefinementSchedule schedule_refinement(const ResolutionPlan& plan, int offset, i
 //! ones are placed by trilinear interpolation. `schedule` is updated to the
 //! new mesh. When every hexahedron splits the result is subdivide_hex_mesh().
 //! `axes`, if given (one per hexahedron), says along which local axes each
-//! regular hexahedron splits (see split_hex_sheets(): it must be the same
+//! regular hexahedron splits (see layer_keeping_axes(): it must be the same
 //! for every hexahedron of a sheet, so that the level stays conforming).
 HexMesh refine_hex_mesh(const HexMesh& mesh, RefinementSchedule& schedule, int level,
                         const std::vector<std::array<bool, 3>>* axes = nullptr);
