@@ -352,6 +352,13 @@ HexMeshResult hexmesh(const Mesh& surface, const Skeleton* skeleton, const HexMe
     for (std::size_t f = 0; f < sum.size(); ++f) total += area[f], weighted += area[f] * sum[f];
     r.mean_distance = total > 0 ? weighted / total : 0.0;
     r.max_distance = detail::hausdorff_distance(boundary, surface, 100000);
+    // the boundary's vertices alone (no chordal error): how far the
+    // optimiser left them off the surface
+    std::vector<double> at_vertex(boundary.vertices.size(), 0.0);
+    parallel_for(0, boundary.vertices.size(), [&](std::size_t v) { at_vertex[v] = to_input(boundary.vertices[v]); }, 256);
+    double vertex_sum = 0;
+    for (double d : at_vertex) vertex_sum += d, r.max_vertex_distance = std::max(r.max_vertex_distance, d);
+    r.mean_vertex_distance = at_vertex.empty() ? 0.0 : vertex_sum / static_cast<double>(at_vertex.size());
   }
   timer.lap("measure");
   return r;

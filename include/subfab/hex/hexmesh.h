@@ -110,6 +110,11 @@ struct HexMeshResult {
   std::array<std::size_t, 11> histogram{};  // [<= 0], then (0, .1], (.1, .2], ..., (.9, 1]
   double diagonal = 0;                      // of the input's bounding box
   double mean_distance = 0, max_distance = 0;  // boundary vs input, model units (see hexmesh.cpp)
+  //! Mean and largest distance of the boundary's vertices (not its faces) to
+  //! the input surface, model units: how far the vertices were left off the
+  //! surface, without the chordal error of the quads between them (the
+  //! quantity a vertex-based distance such as Table D.1's can only see).
+  double mean_vertex_distance = 0, max_vertex_distance = 0;
   OptimizeHexMeshReport optimize;
   RaiseMinScaledJacobianReport raise;
   PullBoundaryReport pull;
