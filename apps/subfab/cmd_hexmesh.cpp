@@ -33,6 +33,7 @@ struct HexmeshArgs {
   bool no_scaling = false;
   bool no_mean_pass = false;
   bool keep_layers = false;
+  bool no_layer_trial = false;
   bool no_view = false;
   int subdivisions = -1;
   std::size_t max_hexes = HexMeshOptions{}.max_hexes;
@@ -54,11 +55,22 @@ nlohmann::ordered_json to_json(const HexmeshArgs& args, const Mesh& input, const
   j["structure_hexahedra"] = r.structure.num_hexes();
   j["subdivisions"] = r.subdivisions;
   j["min_subdivisions"] = r.min_subdivisions;
-  j["keep_layers"] = {{"enabled", args.keep_layers}, {"sheets_kept", r.kept_layer_sheets}};
+  j["keep_layers"] = {{"enabled", r.keep_layers}, {"sheets_kept", r.kept_layer_sheets}};
+  {
+    const LayerTrial& t = r.layer_trial;
+    nlohmann::ordered_json lt{{"tried", t.tried}, {"kept", t.kept}};
+    if (t.tried)
+      lt["not_kept"] = {{"hexahedra", t.hexes},
+                        {"avg_scaled_jacobian", t.avg_sj},
+                        {"min_scaled_jacobian", t.min_sj},
+                        {"mean_distance_fraction", r.diagonal > 0 ? t.mean_distance / r.diagonal : 0.0},
+                        {"seconds", t.seconds}};
+    j["layer_trial"] = lt;
+  }
   {  // D.5: the cones found and used, the integer programme
     const ResolutionPlan& p = r.resolution;
     nlohmann::ordered_json rc;
-    rc["enabled"] = !args.no_scaling;
+    rc["enabled"] = r.resolution_control;
     rc["cones_found"] = r.cones_found.size();
     rc["cones_used"] = p.layers.size();
     nlohmann::ordered_json cones = nlohmann::ordered_json::array();
@@ -163,6 +175,7 @@ int run_hexmesh(const HexmeshArgs& args) {
   options.max_hexes = args.max_hexes;
   options.raise_mean = !args.no_mean_pass;
   options.keep_layers = args.keep_layers;
+  options.layer_trial = !args.no_layer_trial;
   HexMeshResult result;
   try {
     result = hexmesh(mesh, args.skeleton.empty() ? nullptr : &skeleton, options);
@@ -242,6 +255,10 @@ void add_hexmesh_options(CLI::App& sub, HexmeshArgs& args) {
                "The finest level splits across the tubes only (their layers along the skeleton are left whole, "
                "fewer hexahedra touching the structure's irregular edges); the automatic number of levels counts "
                "it. With --no-scaling: cactus 3488 hexahedra, SJ .926 / .620 (docs/hexmesh.md)");
+  sub.add_flag("--no-layer-trial", args.no_layer_trial,
+               "Do not try the layer-keeping mesh (--keep-layers --no-scaling) next to the default one on small "
+               "models (at most 5000 hexahedra, automatic subdivisions; the second mesh is kept when no worse in "
+               "average and minimum scaled Jacobian and mean distance)");
   sub.add_flag("--no-view", args.no_view,
                "Do not write OUTDIR/view.html (the cells coloured by scaled Jacobian in 3D in a browser)");
   sub.add_option("--subdivisions", args.subdivisions,

@@ -178,8 +178,13 @@ std::vector<Vec3> radial_targets(const HexMesh& mesh, const detail::SurfaceProje
 
 }  // namespace
 
-HexMeshResult hexmesh(const Mesh& surface, const Skeleton* skeleton, const HexMeshOptions& options) {
+namespace {
+
+//! hexmesh() without the layer-keeping trial.
+HexMeshResult hexmesh_once(const Mesh& surface, const Skeleton* skeleton, const HexMeshOptions& options) {
   HexMeshResult r;
+  r.resolution_control = options.resolution_control;
+  r.keep_layers = options.keep_layers;
   Timer timer(r.timings);
   Progress* progress = options.progress;
   r.diagonal = bounding_box(surface).diagonal();
@@ -362,6 +367,52 @@ HexMeshResult hexmesh(const Mesh& surface, const Skeleton* skeleton, const HexMe
   }
   timer.lap("measure");
   return r;
+}
+
+double total_seconds(const HexMeshResult& r) {
+  double t = 0;
+  for (const auto& [stage, seconds] : r.timings) t += seconds;
+  return t;
+}
+
+}  // namespace
+
+HexMeshResult hexmesh(const Mesh& surface, const Skeleton* skeleton, const HexMeshOptions& options) {
+  HexMeshResult r = hexmesh_once(surface, skeleton, options);
+  const bool trial = options.layer_trial && !options.keep_layers && options.subdivisions < 0 &&
+                     r.mesh.num_hexes() <= options.layer_trial_hexes && r.check.valid() && r.histogram[0] == 0;
+  if (!trial) return r;
+  HexMeshOptions alternative = options;
+  alternative.layer_trial = false;
+  alternative.keep_layers = true;
+  alternative.resolution_control = false;
+  HexMeshResult other;
+  {
+    StageScope stage(options.progress, "layer-keeping trial");
+    other = hexmesh_once(surface, &r.skeleton, alternative);  // the same skeleton, not computed again
+  }
+  // kept only when no worse on any of the three measures (and valid)
+  const bool better = other.check.valid() && other.histogram[0] == 0 && other.avg_sj >= r.avg_sj &&
+                      other.min_sj >= r.min_sj && other.mean_distance <= r.mean_distance;
+  HexMeshResult& kept = better ? other : r;
+  const HexMeshResult& dropped = better ? r : other;
+  LayerTrial t;
+  t.tried = true;
+  t.kept = better;
+  t.hexes = dropped.mesh.num_hexes();
+  t.avg_sj = dropped.avg_sj;
+  t.min_sj = dropped.min_sj;
+  t.mean_distance = dropped.mean_distance;
+  t.seconds = total_seconds(dropped);
+  kept.layer_trial = t;
+  kept.timings.emplace_back(better ? "mesh without keeping layers (not kept)" : "layer-keeping trial (not kept)",
+                            t.seconds);
+  if (options.progress)
+    options.progress->info(std::string("layer-keeping trial: ") + std::to_string(other.mesh.num_hexes()) +
+                           " hexahedra at " + std::to_string(other.avg_sj) + " / " + std::to_string(other.min_sj) +
+                           (better ? ", kept (no worse on average, minimum and distance)"
+                                   : ", not kept (worse on average, minimum or distance)"));
+  return std::move(kept);
 }
 
 }  // namespace subfab

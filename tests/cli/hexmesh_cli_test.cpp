@@ -42,6 +42,32 @@ TEST(HexmeshCli, WritesMeshReportAndSkeleton) {
   EXPECT_EQ(test::slurp(dir / "hex2" / "hexmesh.mesh"), test::slurp(out / "hexmesh.mesh"));
 }
 
+// The layer-keeping trial runs with automatic levels on small meshes and is
+// reported (tried, kept, the other mesh's numbers); --no-layer-trial and a
+// fixed --subdivisions skip it.
+TEST(HexmeshCli, LayerTrialIsReportedAndCanBeSkipped) {
+  const fs::path dir = test::temp_dir();
+  const fs::path input = dir / "capsule.off";
+  write_mesh(test::capsule(1.0, 3.0, 32, 8, 24), input);
+  const std::string common = " --max-hexes 4000 --no-view --json --quiet";
+  const auto tried = run_subfab("hexmesh " + quoted(input) + " -o " + quoted(dir / "a") + common);
+  ASSERT_EQ(tried.exit_code, 0) << tried.output;
+  const auto t = nlohmann::json::parse(tried.output).at("layer_trial");
+  EXPECT_TRUE(t.at("tried").get<bool>());
+  EXPECT_GT(t.at("not_kept").at("hexahedra").get<std::size_t>(), 0u);
+  EXPECT_GT(t.at("not_kept").at("min_scaled_jacobian").get<double>(), 0.0);
+  const auto skipped = run_subfab("hexmesh " + quoted(input) + " -o " + quoted(dir / "b") + common + " --no-layer-trial");
+  ASSERT_EQ(skipped.exit_code, 0) << skipped.output;
+  EXPECT_FALSE(nlohmann::json::parse(skipped.output).at("layer_trial").at("tried").get<bool>());
+  // not kept on the capsule: the same mesh either way
+  EXPECT_FALSE(t.at("kept").get<bool>());
+  EXPECT_EQ(test::slurp(dir / "a" / "hexmesh.mesh"), test::slurp(dir / "b" / "hexmesh.mesh"));
+  const auto fixed = run_subfab("hexmesh " + quoted(input) + " -o " + quoted(dir / "c") +
+                                " --subdivisions 1 --no-view --json --quiet");
+  ASSERT_EQ(fixed.exit_code, 0) << fixed.output;
+  EXPECT_FALSE(nlohmann::json::parse(fixed.output).at("layer_trial").at("tried").get<bool>());
+}
+
 TEST(HexmeshCli, BadSkeletonFileExitsTwoWithTheLine) {
   const fs::path dir = test::temp_dir();
   const fs::path input = dir / "capsule.off";
