@@ -859,9 +859,10 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
   } catch (const FallbackGivenUp& e) {
     if (options.progress)
       options.progress->warn(std::string("the decomposition within the fallback tolerance was given up (") + e.what() +
-                             ": fewer than " + std::to_string(options.fallback_min_carve_gain * 100) +
-                             " % below the exact carve's " + std::to_string(exact.num_carved_blocks) +
-                             ", too few to pay for milling, measuring and merging them)");
+                             ", less than " + std::to_string(std::lround(options.fallback_min_carve_gain * 100)) +
+                             "% below the exact carve's " + std::to_string(exact.num_carved_blocks) +
+                             " blocks: too few to pay for milling, measuring and merging them); the in-place "
+                             "blocks are kept");
   } catch (const AlgorithmError& e) {
     if (options.progress)
       options.progress->warn(std::string("the decomposition within the fallback tolerance failed (") + e.what() + ")");
