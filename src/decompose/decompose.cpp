@@ -69,6 +69,8 @@ void check_options(const DecomposeOptions& o) {
     throw InvalidArgumentError("tolerance_depth_fractions must be positive finite numbers (at least one)");
   if (!(o.fallback_tolerance_fraction >= 0) || !std::isfinite(o.fallback_tolerance_fraction))
     throw InvalidArgumentError("the fallback tolerance must be a fraction of the bounding-box diagonal >= 0");
+  if (!(o.fallback_min_carve_gain >= 0 && o.fallback_min_carve_gain < 1))
+    throw InvalidArgumentError("the fallback's minimum carve gain must lie in [0, 1)");
   if (!(o.sliver_thickness >= 0) || !std::isfinite(o.sliver_thickness))
     throw InvalidArgumentError("the sliver thickness must be a fraction of the bounding-box diagonal >= 0");
   overhang_sine(o.max_overhang_deg);  // throws on a value outside [0, 45] degrees
@@ -270,6 +272,7 @@ std::vector<Block> carve_stages(const Mesh& solid, const OverhangAllowances* all
   co.overhang_floors = refined_floors;
   co.progress = progress;
   CarveResult carved = carve_blocks(result.canonical, ordered, co);
+  result.num_carved_blocks = carved.blocks.size();
   result.ordered_boxes = std::move(ordered);
   result.timings.carve += seconds_since(t);
   return std::move(carved.blocks);
@@ -374,6 +377,14 @@ class RepairGaveUp : public AlgorithmError {
   using AlgorithmError::AlgorithmError;
 };
 
+//! The whole re-decomposition within the fallback tolerance was given up
+//! after a round whose carve had too many blocks to pay off
+//! (options.fallback_min_carve_gain; decompose()).
+class FallbackGivenUp : public AlgorithmError {
+ public:
+  using AlgorithmError::AlgorithmError;
+};
+
 //! Stage 1b of decompose(): the local repair of the features `infeasible`
 //! of result.canonical (4.3.5); replaces result.canonical by the repaired
 //! solid and sets result.repaired_input and result.repair. Throws
@@ -447,11 +458,14 @@ MillToleranceResult mill_stage(const Mesh& solid, std::vector<Block> blocks, con
 //! under the pinned allowances only (`pinned`: those a thin feature needs;
 //! empty or all zero: none, the exact path). Sets `blocks` and `filled`.
 //! Returns false when the blocks still fail the measure under the pinned
-//! allowances alone (never when none are pinned).
+//! allowances alone (never when none are pinned). `carve_limit` > 0: throws
+//! FallbackGivenUp when a round under allowances carves at least that many
+//! blocks (decompose()'s rule for the re-decomposition within the fallback
+//! tolerance), before its blocks are milled and measured.
 bool stages_within_tolerance(const Mesh& solid, const std::vector<std::array<double, 3>>& depths,
                              const std::vector<std::uint8_t>& pinned, const Mesh& input,
                              const DecomposeOptions& options, DecomposeResult& result, std::vector<Block>& blocks,
-                             std::vector<char>& filled) {
+                             std::vector<char>& filled, std::size_t carve_limit) {
   Progress* progress = options.progress;
   const std::vector<double>& fractions = options.tolerance_depth_fractions;
   std::vector<std::array<std::uint8_t, 3>> level(solid.num_faces(), {0, 0, 0});
@@ -477,6 +491,9 @@ bool stages_within_tolerance(const Mesh& solid, const std::vector<std::array<dou
   for (int round = 0;; ++round) {
     const std::size_t num_allowed = count_allowed_faces(allowed.bits);
     blocks = carve_stages(solid, num_allowed > 0 ? &allowed : nullptr, input, options, result);
+    if (carve_limit > 0 && blocks.size() >= carve_limit)
+      throw FallbackGivenUp("round " + std::to_string(round + 1) + " carved " + std::to_string(blocks.size()) +
+                            " blocks, at least " + std::to_string(carve_limit));
     if (num_allowed == 0) return true;
     ++result.num_tolerance_rounds;
     MillToleranceResult milled = mill_stage(solid, std::move(blocks), options, result);
@@ -512,8 +529,12 @@ bool stages_within_tolerance(const Mesh& solid, const std::vector<std::array<dou
 //! fallback tolerance (the command's default) and slivers left,
 //! `*slivers_within` receives the same blocks with the sliver stage run
 //! again within the fallback tolerance (remove_slivers_within_fallback()).
+//! `carve_limit` > 0: within a tolerance, FallbackGivenUp is thrown when a
+//! round of the stages carves at least that many blocks
+//! (stages_within_tolerance()).
 DecomposeResult decompose_once(const Mesh& input, const DecomposeOptions& options,
-                               std::optional<DecomposeResult>* slivers_within = nullptr) {
+                               std::optional<DecomposeResult>* slivers_within = nullptr,
+                               std::size_t carve_limit = 0) {
   Progress* progress = options.progress;
   const auto start = Clock::now();
   DecomposeResult result;
@@ -588,7 +609,7 @@ DecomposeResult decompose_once(const Mesh& input, const DecomposeOptions& option
   std::vector<Block> blocks;
   std::vector<char> filled;
   if (result.tolerance > 0) {
-    if (!stages_within_tolerance(solid, depths, pinned, input, options, result, blocks, filled)) {
+    if (!stages_within_tolerance(solid, depths, pinned, input, options, result, blocks, filled, carve_limit)) {
       if (progress)
         progress->warn("the blocks holding the feature(s) within the tolerance fail its measure with only their "
                        "allowances: repairing the features instead");
@@ -604,7 +625,7 @@ DecomposeResult decompose_once(const Mesh& input, const DecomposeOptions& option
       depths = depths_within(solid, options, result);
       base = result;
       filled.clear();
-      stages_within_tolerance(solid, depths, pinned, input, options, result, blocks, filled);
+      stages_within_tolerance(solid, depths, pinned, input, options, result, blocks, filled, carve_limit);
     }
   } else {
     blocks = carve_stages(solid, nullptr, input, options, result);
@@ -768,6 +789,11 @@ DecomposeResult decompose_once(const Mesh& input, const DecomposeOptions& option
 
 }  // namespace
 
+std::size_t fallback_carve_limit(std::size_t exact_carved, double min_gain) {
+  if (!(min_gain > 0) || exact_carved == 0) return 0;
+  return static_cast<std::size_t>(std::ceil((1.0 - min_gain) * static_cast<double>(exact_carved)));
+}
+
 DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
   check_options(options);
   // RepairGaveUp is thrown at tolerance 0 only, and only when options.repair
@@ -814,8 +840,14 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
   std::optional<DecomposeResult> chosen;
   if (slivers_within && slivers_within->num_slivers == 0) chosen = std::move(*slivers_within);
   const std::size_t in_place_blocks = chosen ? chosen->blocks.size() : 0;
+  // When the in-place removal already left no sliver, the whole
+  // re-decomposition only pays when its allowances change the carve: it is
+  // given up after a round that carves at least (1 - fallback_min_carve_gain)
+  // x the exact carve's blocks (a count, deterministic; decompose.h).
+  const std::size_t carve_limit =
+      chosen ? fallback_carve_limit(exact.num_carved_blocks, options.fallback_min_carve_gain) : 0;
   try {
-    DecomposeResult result = decompose_once(input, within);
+    DecomposeResult result = decompose_once(input, within, nullptr, carve_limit);
     if (result.num_slivers == 0 && (!chosen || result.blocks.size() < chosen->blocks.size())) {
       chosen = std::move(result);
     } else if (options.progress) {
@@ -824,6 +856,13 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
               ? "within the fallback tolerance " + std::to_string(result.num_slivers) + " sliver block(s) are left too"
               : "within the fallback tolerance " + std::to_string(result.blocks.size()) + " blocks, not fewer");
     }
+  } catch (const FallbackGivenUp& e) {
+    if (options.progress)
+      options.progress->warn(std::string("the decomposition within the fallback tolerance was given up (") + e.what() +
+                             ", less than " + std::to_string(std::lround(options.fallback_min_carve_gain * 100)) +
+                             "% below the exact carve's " + std::to_string(exact.num_carved_blocks) +
+                             " blocks: too few to pay for milling, measuring and merging them); the in-place "
+                             "blocks are kept");
   } catch (const AlgorithmError& e) {
     if (options.progress)
       options.progress->warn(std::string("the decomposition within the fallback tolerance failed (") + e.what() + ")");

@@ -54,6 +54,14 @@ struct DecomposeOptions {
                                     // model gets blocks"). 0 (the library's default): AlgorithmError. The command
                                     // sets 5e-4 unless --tolerance, --tolerance-abs, --exact, --max-overhang or
                                     // --smooth is given (a hobby machine holds about 0.1 mm on a 200 mm part)
+  double fallback_min_carve_gain = 0.05;  // at tolerance 0 with exact blocks that have slivers, when the in-place
+                                    // removal within 1-5e-4 already left none: the whole re-decomposition within the
+                                    // fallback tolerance is given up (the in-place blocks kept) after a round whose
+                                    // carve has at least (1 - this) x the exact carve's blocks, before that round is
+                                    // milled and measured ([0, 1); 0 = never given up). A count, so deterministic;
+                                    // a prediction, not a bound: later merges within the tolerance could still
+                                    // gain (pinion: 1454 of 1485, given up; couplingdown: 3, 30, 31, 123 of 191,
+                                    // 56 blocks at the end vs 107 in place; bench/RESULTS.md)
   int tolerance_rounds = 4;         // within a tolerance: decompositions under allowances (tolerance_allowances())
                                     // before the exact one (>= 1)
   std::vector<double> tolerance_depth_fractions = {2.0, 1.0, 0.5};  // within a tolerance: a face may lean past
@@ -122,6 +130,7 @@ struct DecomposeResult {
   std::size_t num_grown_boxes = 0;
   std::size_t num_selected_boxes = 0;
   std::size_t num_ordered_boxes = 0;   // after cycle splits
+  std::size_t num_carved_blocks = 0;   // blocks the last carve made (before the merges)
   int num_refined_faces = 0;
   int num_cycle_splits = 0;
   std::size_t num_merges = 0;
@@ -150,8 +159,18 @@ struct DecomposeResult {
 //! sliver stage run again within the smallest of 1, 2, 5 x 1e-4 of the
 //! diagonal (up to that tolerance) that removes them all; of those without
 //! slivers the one with fewer blocks is kept (the exact blocks on a tie),
-//! else the exact one, slivers counted.
+//! else the exact one, slivers counted. When the in-place removal left no
+//! sliver, the whole re-decomposition is given up after a round whose carve
+//! has at least fallback_carve_limit() blocks (options.fallback_min_carve_gain).
 //! \throw InvalidArgumentError on bad options; AlgorithmError when a stage fails.
 DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options);
+
+//! The rule that bounds the default's re-decomposition (decompose(), when
+//! the exact blocks' slivers were all removed in place): the number of
+//! carved blocks at which a round of the re-decomposition within the
+//! fallback tolerance is given up, ceil((1 - min_gain) x exact_carved)
+//! (DecomposeOptions::fallback_min_carve_gain); 0 (never given up) when
+//! min_gain is 0 or nothing was carved.
+std::size_t fallback_carve_limit(std::size_t exact_carved, double min_gain);
 
 }  // namespace subfab
