@@ -8,6 +8,7 @@
 #include <CGAL/AABB_tree.h>
 #include <CGAL/Polygon_mesh_processing/bbox.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/boost/graph/helpers.h>
 #include <CGAL/Side_of_triangle_mesh.h>
 
@@ -42,22 +43,33 @@ bool union_surface(std::vector<ExactMesh>& operands, std::vector<std::pair<std::
   const std::size_t m = operands.size();
   for (const ExactMesh& o : operands)
     if (has_coincident_vertices(o)) return false;
-  const auto self = CGAL::parameters::throw_on_self_intersection(true);
   std::vector<CGAL::Bbox_3> box(m);
   for (std::size_t a = 0; a < m; ++a) box[a] = PMP::bbox(operands[a]);
+  // Self-intersections are checked once, on the operands as given (CGAL's
+  // corefinement requires none; refining a mesh never creates one), not by
+  // each corefinement: those checks, repeated on meshes already refined by
+  // earlier pairs (constructed points of 300-1000 bits), were a third of
+  // the overlay's time (issue 17, bench/RESULTS.md "fillfast").
+  for (const ExactMesh& o : operands)
+    if (PMP::does_self_intersect(o)) throw PMP::Corefinement::Self_intersection_exception();
+  // The operands as given: classifying a point against O_b does not depend
+  // on how O_b is refined, and the given faces have far smaller exact
+  // coordinates than the refined ones (the side tests' exact fallbacks).
+  const std::vector<ExactMesh> given = operands;
   // 1. corefine every pair whose boxes meet (closed boxes: touching counts)
   for (std::size_t a = 0; a < m; ++a)
     for (std::size_t b = a + 1; b < m; ++b)
-      if (CGAL::do_overlap(box[a], box[b])) PMP::corefine(operands[a], operands[b], self, self);
+      if (CGAL::do_overlap(box[a], box[b])) PMP::corefine(operands[a], operands[b]);
   // CGAL 5.5's corefinement can leave a broken mesh (a face around a null
   // vertex: seen in a union, measure_fill_deviation.cpp): refused, not read.
   for (const ExactMesh& o : operands)
     if (!CGAL::is_valid_polygon_mesh(o)) return false;
   // 2. classify one interior point of every face against the other operands
+  //    (as given, see above)
   std::vector<std::unique_ptr<Tree>> trees(m);
   std::vector<std::unique_ptr<SideOf>> sides(m);
   for (std::size_t b = 0; b < m; ++b) {
-    trees[b] = std::make_unique<Tree>(faces(operands[b]).first, faces(operands[b]).second, operands[b]);
+    trees[b] = std::make_unique<Tree>(faces(given[b]).first, faces(given[b]).second, given[b]);
     trees[b]->build();
     sides[b] = std::make_unique<SideOf>(*trees[b]);
   }
@@ -107,7 +119,7 @@ bool union_surface(std::vector<ExactMesh>& operands, std::vector<std::pair<std::
       trees[b]->all_intersected_primitives(p, std::back_inserter(under));
       int facing = 0;  // +1 same way, -1 opposite
       for (FaceIndex g : under) {
-        const Corners u = corners(operands[b], g);
+        const Corners u = corners(given[b], g);  // the given face holding f's refined copy
         if (CGAL::orientation(u.a, u.b, u.c, t.a) != CGAL::COPLANAR ||
             CGAL::orientation(u.a, u.b, u.c, t.b) != CGAL::COPLANAR ||
             CGAL::orientation(u.a, u.b, u.c, t.c) != CGAL::COPLANAR)
