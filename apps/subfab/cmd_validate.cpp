@@ -59,9 +59,15 @@ struct RecordedRepairs {
 };
 
 //! Reads decomposition.json and the block files it lists.
+//! Decompose's frame as recorded (check 10 measures there when every block has its frame block).
+struct RecordedFrame {
+  std::optional<Eigen::Matrix3d> rotation;  // "rotation" (set when "frame" is there)
+  double snap_tolerance = 1e-9;             // "frame"."snap_tolerance"
+};
+
 std::vector<ValidationBlock> read_decomposition(const fs::path& outdir, ValidationLimits& limits,
                                                 RecordedRepairs& repairs, double& max_overhang_deg,
-                                                double& tolerance_fraction) {
+                                                double& tolerance_fraction, RecordedFrame& frame) {
   const fs::path path = outdir / "decomposition.json";
   std::ifstream in(path);
   if (!in) throw IoError(path.string() + ": cannot open (is this a folder written by subfab decompose?)");
@@ -98,6 +104,14 @@ std::vector<ValidationBlock> read_decomposition(const fs::path& outdir, Validati
     if (p.contains("machine") && !p["machine"].is_null()) limits.machine = json_vec(p["machine"], "parameters.machine");
     max_overhang_deg = p.contains("max_overhang_deg") ? p["max_overhang_deg"].get<double>() : 0.0;
     tolerance_fraction = p.contains("tolerance_fraction") ? p["tolerance_fraction"].get<double>() : 0.0;
+    if (doc.contains("frame") && doc["frame"].is_object()) {
+      const Json& r = doc.at("rotation");
+      Eigen::Matrix3d rot;
+      for (int i = 0; i < 3; ++i)
+        for (int c = 0; c < 3; ++c) rot(i, c) = r.at(static_cast<std::size_t>(i)).at(static_cast<std::size_t>(c)).get<double>();
+      frame.rotation = rot;
+      frame.snap_tolerance = doc["frame"].at("snap_tolerance").get<double>();
+    }
     std::vector<ValidationBlock> blocks;
     for (const Json& b : doc.at("blocks")) {
       ValidationBlock vb;
@@ -105,6 +119,7 @@ std::vector<ValidationBlock> read_decomposition(const fs::path& outdir, Validati
       vb.direction = json_vec(b.at("direction"), "direction");
       const fs::path machine = outdir / b.at("machine_mesh").get<std::string>();
       if (fs::exists(machine)) vb.machine_mesh = read_mesh(machine);
+      if (b.contains("frame_mesh")) vb.frame_mesh = read_mesh(outdir / b["frame_mesh"].get<std::string>());
       const Json& m = b.at("machine_transform");
       for (int r = 0; r < 4; ++r)
         for (int c = 0; c < 4; ++c) vb.machine_transform(r, c) = m.at(static_cast<std::size_t>(r)).at(static_cast<std::size_t>(c)).get<double>();
@@ -270,8 +285,11 @@ int run_validate(const ValidateArgs& args) {
   ValidationOptions options;
   RecordedRepairs repairs;
   double recorded_overhang = 0.0, recorded_tolerance = 0.0;
+  RecordedFrame frame;
   const std::vector<ValidationBlock> blocks =
-      read_decomposition(args.outdir, options.limits, repairs, recorded_overhang, recorded_tolerance);
+      read_decomposition(args.outdir, options.limits, repairs, recorded_overhang, recorded_tolerance, frame);
+  options.frame_rotation = frame.rotation;
+  options.frame_snap_tolerance = frame.snap_tolerance;
   const RecordedRepair* repair = repairs.decomposed();
   const double tolerance_fraction = args.tolerance ? *args.tolerance : recorded_tolerance;
   const double overhang = args.max_overhang ? *args.max_overhang : recorded_overhang;
@@ -348,7 +366,9 @@ int run_validate(const ValidateArgs& args) {
                         {"to_input", report.deviation_to_input},
                         {"from_input", report.deviation_from_input},
                         {"max_fraction", std::max(report.deviation_to_input, report.deviation_from_input) / diagonal},
-                        {"error_bound", report.deviation_error}};
+                        {"error_bound", report.deviation_error},
+                        {"measured_in_frame", report.measured_in_frame},
+                        {"frame_rounding", report.frame_rounding}};
     if (repair)
       j["repaired_input"] = {{"mesh", (fs::path(args.outdir) / repair->mesh).string()},
                              {"max_deviation", repair->max_deviation},

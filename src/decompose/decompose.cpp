@@ -33,6 +33,7 @@
 #include "subfab/decompose/tolerance_allowances.h"
 #include "subfab/decompose/orient_mesh.h"
 #include "subfab/decompose/remove_slivers.h"
+#include "subfab/validate/find_slivers.h"
 #include "subfab/decompose/resolve_overlaps.h"
 #include "subfab/decompose/select_cover.h"
 #include "subfab/decompose/snap_and_shrink.h"
@@ -718,14 +719,14 @@ DecomposeResult decompose_once(const Mesh& input, const DecomposeOptions& option
       progress->info(std::to_string(merged.num_merges) + " merges within the tolerance (" +
                      std::to_string(merged.num_candidates) + " milled shapes evaluated)");
   }
-  // 9. no slivers (issue 17): blocks thinner than max(1e-4 x diagonal, T)
+  // 9. no slivers (issue 17): blocks thinner than sliver_threshold()
   //    where the model is thicker are merged or dropped within the
   //    tolerance; at T = 0 only counted (remove_slivers.h).
   // the sliver stage's options within tolerance t (validate's threshold
-  // max(1e-4 x diagonal, t)); shared by steps 9 and 9b
+  // sliver_threshold(): max(1e-4 x diagonal, min(t, H / 4))); shared by steps 9 and 9b
   const auto sliver_options = [&](double t) {
     SliverRemovalOptions so;
-    so.min_thickness = std::max(options.sliver_thickness * diagonal, t);
+    so.min_thickness = sliver_threshold(options.sliver_thickness * diagonal, t, result.max_height);
     so.tolerance = t;
     so.max_height = result.max_height;
     so.machine_size = machine;

@@ -13,6 +13,7 @@
 #include "geometry/rotate_accurately.h"
 #include "subfab/core/error.h"
 #include "subfab/decompose/finalize_blocks.h"
+#include "subfab/geometry/rotate_into_frame.h"
 #include "subfab/validate/block_thickness.h"
 #include "subfab/validate/validate_decomposition.h"
 #include "subfab/mesh/write_mesh.h"
@@ -122,6 +123,14 @@ std::vector<ExportedBlock> make_exported_blocks(const Mesh& input, const Decompo
                     clean.ok ? "" : "; its STL is still not a solid (validate check 8 will fail)");
       progress->warn(buf);
     }
+    // The frame twin follows the single-precision cleanup (its collapses and moves).
+    e.frame_mesh = e.mesh.vertices == block_before.vertices && e.mesh.faces == block_before.faces
+                       ? std::move(b.frame_mesh)
+                       : frame_twin(e.mesh, block_before, b.frame_mesh.vertices, result.rotation);
+    const Eigen::Matrix3d back = result.rotation.transpose();
+    for (std::size_t v = 0; v < e.mesh.num_vertices(); ++v)
+      e.frame_rounding =
+          std::max(e.frame_rounding, (e.mesh.vertices[v] - detail::rotate_accurately(back, e.frame_mesh.vertices[v])).norm());
     e.machine_transform.setIdentity();
     e.machine_transform.topLeftCorner<3, 3>() = to_machine;
     e.machine_transform.topRightCorner<3, 1>() = shift;
@@ -163,6 +172,11 @@ std::string decomposition_json(const Mesh& input, const DecomposeResult& result,
   Json rot = Json::array();
   for (int r = 0; r < 3; ++r) rot.push_back(Json::array({result.rotation(r, 0), result.rotation(r, 1), result.rotation(r, 2)}));
   doc["rotation"] = rot;
+  if (result.tolerance > 0) {  // the frame blocks (within a tolerance only: the exact output stays as it was)
+    double rounding = 0.0;
+    for (const ExportedBlock& b : blocks) rounding = std::max(rounding, b.frame_rounding);
+    doc["frame"] = {{"snap_tolerance", kFrameSnapTolerance}, {"max_rounding", rounding}};
+  }
   const DecomposeOptions& o = info.options;
   doc["parameters"] = {{"max_height_fraction", limit_json(o.max_height_fraction)},
                        {"max_height", limit_json(result.max_height)},
@@ -185,18 +199,21 @@ std::string decomposition_json(const Mesh& input, const DecomposeResult& result,
     for (int r = 0; r < 4; ++r)
       m.push_back(Json::array({b.machine_transform(r, 0), b.machine_transform(r, 1), b.machine_transform(r, 2),
                                b.machine_transform(r, 3)}));
-    list.push_back({{"id", i},
-                    {"mesh", block_file("blocks", i, "obj")},
-                    {"machine_mesh", block_file("mill", i, "stl")},
-                    {"direction", vec_json(b.direction)},
-                    {"axis", std::string(axis_name(b.axis))},
-                    {"base_offset", b.base_offset},
-                    {"height", b.height},
-                    {"volume", b.volume},
-                    {"thickness", b.thickness},
-                    {"max_overhang_deg", b.max_overhang_deg},
-                    {"bbox", {{"min", vec_json(b.bbox.min)}, {"max", vec_json(b.bbox.max)}}},
-                    {"machine_transform", m}});
+    Json entry;
+    entry["id"] = i;
+    entry["mesh"] = block_file("blocks", i, "obj");
+    entry["machine_mesh"] = block_file("mill", i, "stl");
+    if (result.tolerance > 0) entry["frame_mesh"] = block_file("frame", i, "obj");
+    entry["direction"] = vec_json(b.direction);
+    entry["axis"] = std::string(axis_name(b.axis));
+    entry["base_offset"] = b.base_offset;
+    entry["height"] = b.height;
+    entry["volume"] = b.volume;
+    entry["thickness"] = b.thickness;
+    entry["max_overhang_deg"] = b.max_overhang_deg;
+    entry["bbox"] = {{"min", vec_json(b.bbox.min)}, {"max", vec_json(b.bbox.max)}};
+    entry["machine_transform"] = m;
+    list.push_back(std::move(entry));
     total += b.volume;
     smallest = std::min(smallest, b.volume);
     thinnest = std::min(thinnest, b.thickness);
@@ -233,9 +250,14 @@ std::vector<ExportedBlock> export_decomposition(const Mesh& input, const Decompo
   // Finish the blocks first: a block that cannot be made valid leaves the folder untouched.
   std::vector<ExportedBlock> blocks = make_exported_blocks(input, result, info.options.progress);
   std::error_code ec;
-  for (const char* sub : {"blocks", "mill"}) {
-    fs::create_directories(outdir / sub, ec);
-    if (ec) throw IoError((outdir / sub).string() + ": cannot create folder: " + ec.message());
+  const bool framed = result.tolerance > 0;  // frame/ within a tolerance only
+  for (const char* sub : {"blocks", "mill", "frame"}) {
+    if (sub == std::string("frame") && !framed) {
+      if (!fs::is_directory(outdir / sub, ec)) continue;  // nothing stale to remove
+    } else {
+      fs::create_directories(outdir / sub, ec);
+      if (ec) throw IoError((outdir / sub).string() + ": cannot create folder: " + ec.message());
+    }
     // Remove block files of an earlier run (they would not be listed in the JSON).
     for (const auto& entry : fs::directory_iterator(outdir / sub, ec)) {
       const std::string name = entry.path().filename().string();
@@ -245,6 +267,7 @@ std::vector<ExportedBlock> export_decomposition(const Mesh& input, const Decompo
   for (std::size_t i = 0; i < blocks.size(); ++i) {
     write_mesh(blocks[i].mesh, outdir / block_file("blocks", i, "obj"));
     write_mesh(blocks[i].machine_mesh, outdir / block_file("mill", i, "stl"));
+    if (framed) write_mesh(blocks[i].frame_mesh, outdir / block_file("frame", i, "obj"));
   }
   const fs::path json_path = outdir / "decomposition.json";
   std::ofstream out(json_path, std::ios::binary);

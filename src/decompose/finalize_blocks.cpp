@@ -176,6 +176,28 @@ struct Finished {
 
 }  // namespace
 
+Mesh frame_twin(const Mesh& finished, const Mesh& rounded, const std::vector<Vec3>& frame,
+                const Eigen::Matrix3d& rotation) {
+  // rounded point -> the least frame point rounded to it
+  std::unordered_map<Vec3, Vec3, VecHash> source;
+  const auto less = [](const Vec3& a, const Vec3& b) {
+    return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+  };
+  const std::size_t n = std::min(rounded.num_vertices(), frame.size());
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto [it, added] = source.emplace(rounded.vertices[i], frame[i]);
+    if (!added && less(frame[i], it->second)) it->second = frame[i];
+  }
+  Mesh twin;
+  twin.faces = finished.faces;
+  twin.vertices.reserve(finished.num_vertices());
+  for (const Vec3& v : finished.vertices) {
+    const auto it = source.find(v);
+    twin.vertices.push_back(it != source.end() ? it->second : detail::rotate_accurately(rotation, v));
+  }
+  return twin;
+}
+
 CleanupReport clean_rounded_block(Mesh& block, const Vec3& direction, double tolerance,
                                   const FinalizeOptions& options) {
   CleanupReport report;
@@ -253,7 +275,7 @@ std::string block_defect(const Mesh& block, const Vec3& direction, double diagon
 //! Steps 1-3 of finalize_blocks() on one block at a time (thread-safe).
 struct RoundedBlockCheck::Impl {
   Impl(const Mesh& input_, const DecomposeResult& result, const FinalizeOptions& options_)
-      : input(input_), options(options_), back(result.rotation.transpose()) {
+      : input(input_), options(options_), back(result.rotation.transpose()), forward(result.rotation) {
     // Canonical input vertices -> input vertices (their exact coordinates come back).
     const std::size_t n_in =
         std::min({result.num_input_vertices, result.canonical.num_vertices(), input.num_vertices()});
@@ -262,7 +284,8 @@ struct RoundedBlockCheck::Impl {
     tolerance = options.relative_tolerance * rounding_scale(input);
   }
 
-  Finished finish(const Block& b) const {
+  //! \param with_frame also make the block's frame twin (finalize_blocks(), not the checks)
+  Finished finish(const Block& b, bool with_frame = false) const {
     Finished out;
     out.block.axis = b.axis;
     out.block.source_box = b.source_box;
@@ -294,12 +317,14 @@ struct RoundedBlockCheck::Impl {
       out.error.clear();
       out.cleanup = {};
     }
+    if (with_frame && out.error.empty()) out.block.frame_mesh = frame_twin(m, rounded, b.mesh.vertices, forward);
     return out;
   }
 
   const Mesh& input;
   FinalizeOptions options;
   Eigen::Matrix3d back;
+  Eigen::Matrix3d forward;
   std::unordered_map<Vec3, int, VecHash> input_vertex;
   double diagonal = 0.0;
   double tolerance = 0.0;
@@ -322,7 +347,7 @@ namespace {
 std::vector<Finished> finish_blocks(const Mesh& input, const DecomposeResult& result, const FinalizeOptions& options) {
   const RoundedBlockCheck::Impl finisher(input, result, options);
   std::vector<Finished> done(result.blocks.size());
-  parallel_for(0, result.blocks.size(), [&](std::size_t i) { done[i] = finisher.finish(result.blocks[i]); });
+  parallel_for(0, result.blocks.size(), [&](std::size_t i) { done[i] = finisher.finish(result.blocks[i], true); });
   return done;
 }
 
@@ -330,7 +355,9 @@ std::vector<Finished> finish_blocks(const Mesh& input, const DecomposeResult& re
 
 std::vector<std::string> block_defects_after_rounding(const Mesh& input, const DecomposeResult& result,
                                                       const FinalizeOptions& options) {
-  std::vector<Finished> done = finish_blocks(input, result, options);
+  const RoundedBlockCheck::Impl finisher(input, result, options);
+  std::vector<Finished> done(result.blocks.size());
+  parallel_for(0, result.blocks.size(), [&](std::size_t i) { done[i] = finisher.finish(result.blocks[i]); });
   std::vector<std::string> out;
   out.reserve(done.size());
   for (Finished& f : done) out.push_back(std::move(f.error));

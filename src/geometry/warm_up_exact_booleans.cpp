@@ -8,6 +8,7 @@
 
 #include "geometry/deterministic_arena.h"
 #include "geometry/exact_mesh.h"
+#include "geometry/union_surface.h"
 
 namespace subfab::detail {
 namespace {
@@ -58,6 +59,14 @@ void warm_up_exact_booleans() {
     ExactMesh a = make(0, 0, 0, 2, 2, 1), b = make(0, 0, 0, 1, 1, 1), c = make(1, 1, 0, 2, 2, 1), ab, abc;
     if (PMP::corefine_and_compute_difference(a, b, ab)) PMP::corefine_and_compute_difference(ab, c, abc);
   }
+  {
+    // The overlay of union_surface(): two cubes sharing an edge, one sharing
+    // a face with the first (Side_of_triangle_mesh's rays, the AABB tree's
+    // point queries, the coplanar case).
+    std::vector<ExactMesh> ops{make(0, 0, 0, 1, 1, 1), make(1, 1, 0, 2, 2, 1), make(0, 0, 1, 1, 1, 2)};
+    std::vector<std::pair<std::size_t, FaceIndex>> kept;
+    union_surface(ops, kept);
+  }
   const ExactKernel::Triangle_3 t(ExactPoint(0, 0, 0), ExactPoint(1, 0, 0), ExactPoint(0, 1, 0));
   const ExactPoint c = CGAL::centroid(t[0], t[1], t[2]);
   (void)t.has_on(c);
@@ -69,6 +78,12 @@ void warm_up_exact_booleans() {
   ExactKernel::Plane_3 plane;
   ExactKernel::Segment_3 segment;
   ExactKernel::Iso_cuboid_3 cuboid;
+  ExactKernel::Ray_3 ray;
+  ExactKernel::Line_3 line;
+  ExactKernel::Direction_3 direction;
+  (void)ray;
+  (void)line;
+  (void)direction;
   (void)zero;
   (void)origin;
   (void)v;

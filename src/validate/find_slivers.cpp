@@ -191,4 +191,8 @@ std::vector<SliverMeasure> find_slivers(const Mesh& input, const std::vector<Sli
   return out;
 }
 
+double sliver_threshold(double floor, double tolerance, double max_height) {
+  return std::max(floor, std::min(tolerance, max_height / 4));
+}
+
 }  // namespace subfab

@@ -8,6 +8,7 @@
 #include <CGAL/Polygon_mesh_processing/distance.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <array>
@@ -22,6 +23,7 @@
 #include "geometry/exact_mesh.h"
 #include "geometry/solid_index.h"
 #include "geometry/surface_deviation.h"
+#include "geometry/union_surface.h"
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
 
@@ -63,31 +65,17 @@ double hausdorff(const detail::DistanceMesh& from, const detail::DistanceMesh& t
 
 const auto kThrowOnSelfIntersection = CGAL::parameters::throw_on_self_intersection(true);
 
-//! a := a ∪ b (exact); false when CGAL cannot (a non-manifold result), or
-//! when either operand touches itself (two vertices at one exact point):
-//! the corefinement's precondition, which it does not check and can loop on.
 //! An operand that self-intersects near the cut throws
 //! Self_intersection_exception (caught in local_surface(), inside its arena):
 //! CGAL 5.5 does not check that precondition otherwise and can crash
-//! (decimated_knight.off at --tolerance 5e-4: segfault in this union).
-bool unite(ExactMesh& a, ExactMesh& b) {
-  if (detail::has_coincident_vertices(a) || detail::has_coincident_vertices(b)) return false;
-  ExactMesh out;
-  if (!PMP::corefine_and_compute_union(a, b, out, kThrowOnSelfIntersection, kThrowOnSelfIntersection)) return false;
-  // CGAL 5.5 can report success with a broken result (faces around a null
-  // vertex: fertility at 1e-3, found on branch fillm3, where reading its
-  // points segfaulted): refused like a failed union.
-  if (!CGAL::is_valid_polygon_mesh(out)) return false;
-  a = std::move(out);
-  return true;
-}
-
+//! (decimated_knight.off at --tolerance 5e-4: segfault in a union).
 //! The surface of V = (block ∪ others) ∩ region ∪ (solid ∩ region) inside
 //! the open region, as a double mesh and the list of its faces that are not
 //! on the region's planes. Exact booleans in a deterministic arena.
 struct Surface {
   Mesh mesh;
-  std::vector<int> faces;  // faces of mesh not on a plane of the region
+  std::vector<int> faces;     // faces of mesh not on a plane of the region
+  std::vector<char> in_inner;  // per entry of `faces`: its three corners lie in the closed inner box (exact)
 };
 
 //! Exceptions are caught here, while the arena lives, and their message is
@@ -95,15 +83,15 @@ struct Surface {
 //! arena must not be read after the arena ends).
 void local_surface_in_arena(const Mesh& solid, const detail::SolidIndex& index, const Mesh& block,
                             const std::vector<const Mesh*>& others, const Box3& region, const Box3& inner,
-                            std::optional<Surface>& out);
+                            bool overlay_only, std::optional<Surface>& out);
 
 std::optional<Surface> local_surface(const Mesh& solid, const detail::SolidIndex& index, const Mesh& block,
                                      const std::vector<const Mesh*>& others, const Box3& region, const Box3& inner,
-                                     std::string& error) {
+                                     bool overlay_only, std::string& error) {
   detail::warm_up_exact_booleans();
   std::optional<Surface> out;
   const std::string failure =
-      detail::run_in_arena([&] { local_surface_in_arena(solid, index, block, others, region, inner, out); });
+      detail::run_in_arena([&] { local_surface_in_arena(solid, index, block, others, region, inner, overlay_only, out); });
   if (failure.empty()) return out;
   // CGAL's Self_intersection_exception: an operand self-intersects near the cut
   error = "exact boolean failed: " + failure;
@@ -111,21 +99,23 @@ std::optional<Surface> local_surface(const Mesh& solid, const detail::SolidIndex
 }
 
 //! Fills `out` (under a SuspendArena) with the surface; leaves it empty when
-//! a union is not a 2-manifold. The solid is clipped to `region`, the blocks
-//! to `inner` (inside it, no plane shared): the two clips' cut faces are
-//! never coplanar (CGAL's corefinement of large overlapping coplanar cut
-//! faces was the measure's dominant cost). Faces on the planes of either
-//! box are cut faces, not surface (those on `inner`'s planes lie outside
-//! the core widened by the reach, see measure_region()).
+//! it cannot be made. The solid is clipped to `region`, the blocks to
+//! `inner` (inside it, no plane shared): the two clips' cut faces are never
+//! coplanar (CGAL's corefinement of large overlapping coplanar cut faces was
+//! the measure's dominant cost). Faces on the planes of either box are cut
+//! faces, not surface (those on `inner`'s planes lie outside the core
+//! widened by the reach, see measure_region()).
+//! The surface is made by successive CGAL unions (fast), or, when one fails
+//! (its result would not be a 2-manifold: operands touching along an edge
+//! or at a point) or `overlay_only`, by union_surface() on the same operands.
 void local_surface_in_arena(const Mesh& solid, const detail::SolidIndex& index, const Mesh& block,
                             const std::vector<const Mesh*>& others, const Box3& region, const Box3& inner,
-                            std::optional<Surface>& out) {
-  std::vector<ExactMesh> pieces = detail::clip_solid_to_box(solid, index, region);
-  ExactMesh v;
+                            bool overlay_only, std::optional<Surface>& out) {
+  std::vector<ExactMesh> operands;
   const BoundingBox rb{inner.min, inner.max};
-  std::vector<const Mesh*> operands{&block};
-  operands.insert(operands.end(), others.begin(), others.end());
-  for (const Mesh* o : operands) {
+  std::vector<const Mesh*> blocks{&block};
+  blocks.insert(blocks.end(), others.begin(), others.end());
+  for (const Mesh* o : blocks) {
     ExactMesh e = detail::to_exact(*o);
     if (!inside(bounding_box(*o), rb)) {
       ExactMesh box = detail::box_mesh(inner), clipped;
@@ -135,39 +125,94 @@ void local_surface_in_arena(const Mesh& solid, const detail::SolidIndex& index, 
         return;
       e = std::move(clipped);
     }
-    if (e.number_of_faces() == 0) continue;
-    if (v.number_of_faces() == 0)
-      v = std::move(e);
-    else if (!unite(v, e))
-      return;
+    if (e.number_of_faces() > 0) operands.push_back(std::move(e));
   }
-  for (ExactMesh& p : pieces) {
-    if (v.number_of_faces() == 0)
-      v = std::move(p);
-    else if (!unite(v, p))
-      return;
+  for (ExactMesh& p : detail::clip_solid_to_box(solid, index, region)) operands.push_back(std::move(p));
+  // Successive unions; when one fails (not a 2-manifold), the overlay of all
+  // the operands. Setting aside only the operand whose union failed and
+  // uniting the rest crashed inside CGAL on fertility at 1e-3 (a union the
+  // first failure used to stop before): the unions stop at the first failure.
+  // The unions work on copies (the overlay needs the operands as they were).
+  for (const ExactMesh& e : operands)
+    if (detail::has_coincident_vertices(e)) return;  // CGAL's corefinement precondition: it can loop
+  std::vector<ExactMesh> parts;
+  if (!overlay_only) {
+    ExactMesh v;
+    bool united = true;
+    for (std::size_t k = 0; k < operands.size() && united; ++k) {
+      ExactMesh e = operands[k];
+      if (v.number_of_faces() == 0) {
+        v = std::move(e);
+        continue;
+      }
+      ExactMesh u;
+      // CGAL 5.5 can report success with a broken result: on fertility at
+      // 1e-3 (validate check 10, data/regression/fertility_fill_*.obj) a
+      // union whose output has faces around a null vertex, which crashed
+      // reading its points (the "race" of branch fillm2 at --threads 2: it
+      // is deterministic, --threads 1 reaches that box later). Checked.
+      united = PMP::corefine_and_compute_union(v, e, u, kThrowOnSelfIntersection, kThrowOnSelfIntersection) &&
+               CGAL::is_valid_polygon_mesh(u) && !detail::has_coincident_vertices(u);
+      if (united) v = std::move(u);
+    }
+    if (united) parts.push_back(std::move(v));
   }
-  std::vector<char> on_plane(v.number_of_faces(), 0);
+  if (parts.empty()) parts = std::move(operands);
+  std::vector<std::pair<std::size_t, detail::FaceIndex>> kept;  // (part, face)
+  if (parts.size() == 1) {
+    for (auto f : parts[0].faces()) kept.emplace_back(0, f);
+  } else if (!detail::union_surface(parts, kept)) {
+    return;
+  }
+  auto mesh_of = [&](std::size_t k) -> const ExactMesh& { return parts[k]; };
   const detail::ExactKernel::FT lo[3] = {region.min.x(), region.min.y(), region.min.z()};
   const detail::ExactKernel::FT hi[3] = {region.max.x(), region.max.y(), region.max.z()};
   const detail::ExactKernel::FT in_lo[3] = {inner.min.x(), inner.min.y(), inner.min.z()};
   const detail::ExactKernel::FT in_hi[3] = {inner.max.x(), inner.max.y(), inner.max.z()};
-  std::size_t i = 0;
-  for (auto f : v.faces()) {
-    const auto h = v.halfedge(f);
-    const detail::ExactPoint* c[3] = {&v.point(v.source(h)), &v.point(v.target(h)), &v.point(v.target(v.next(h)))};
-    for (int k = 0; k < 3 && !on_plane[i]; ++k)
-      for (const auto* plane : {&lo[k], &hi[k], &in_lo[k], &in_hi[k]})
-        if ((*c[0])[k] == *plane && (*c[1])[k] == *plane && (*c[2])[k] == *plane) on_plane[i] = 1;
-    ++i;
+  std::vector<std::pair<std::size_t, detail::FaceIndex>> surface;
+  std::vector<char> within;  // per entry of `surface`: inside the closed inner box
+  for (const auto& [k, f] : kept) {
+    const ExactMesh& m = mesh_of(k);
+    const auto h = m.halfedge(f);
+    const detail::ExactPoint* c[3] = {&m.point(m.source(h)), &m.point(m.target(h)), &m.point(m.target(m.next(h)))};
+    bool on_plane = false;
+    for (int i = 0; i < 3 && !on_plane; ++i)
+      for (const auto* plane : {&lo[i], &hi[i], &in_lo[i], &in_hi[i]})
+        if ((*c[0])[i] == *plane && (*c[1])[i] == *plane && (*c[2])[i] == *plane) on_plane = true;
+    if (on_plane) continue;
+    surface.emplace_back(k, f);
+    bool in = true;
+    for (int q = 0; q < 3 && in; ++q)
+      for (int i = 0; i < 3 && in; ++i) in = in_lo[i] <= (*c[q])[i] && (*c[q])[i] <= in_hi[i];
+    within.push_back(in ? 1 : 0);
   }
   {
     detail::SuspendArena heap;
     out.emplace();
-    out->mesh = detail::to_double(v);
-    for (std::size_t f = 0; f < on_plane.size(); ++f)
-      if (!on_plane[f]) out->faces.push_back(static_cast<int>(f));
-    std::vector<ExactMesh>().swap(pieces);
+    out->in_inner = within;
+    // each vertex rounded once from its exact value (as to_double() does)
+    std::vector<std::vector<int>> vertex(parts.size());
+    for (const auto& [k, f] : surface) {
+      const ExactMesh& m = mesh_of(k);
+      std::vector<int>& index_of = vertex[k];
+      if (index_of.empty()) index_of.assign(m.num_vertices(), -1);
+      Triangle t{};
+      int q = 0;
+      for (auto x : CGAL::vertices_around_face(m.halfedge(f), m)) {
+        int& id = index_of[x.idx()];
+        if (id < 0) {
+          const detail::ExactPoint& p = m.point(x);
+          id = static_cast<int>(out->mesh.vertices.size());
+          out->mesh.vertices.emplace_back(CGAL::to_double(CGAL::exact(p.x())), CGAL::to_double(CGAL::exact(p.y())),
+                                          CGAL::to_double(CGAL::exact(p.z())));
+        }
+        if (q < 3) t[static_cast<std::size_t>(q)] = id;
+        ++q;
+      }
+      out->faces.push_back(static_cast<int>(out->mesh.faces.size()));
+      out->mesh.faces.push_back(t);
+    }
+    std::vector<ExactMesh>().swap(parts);
   }
 }
 
@@ -178,6 +223,133 @@ double rounding_slack(const Mesh& mesh) {
   if (b.is_empty()) return 0.0;
   const double m = std::max(b.min.cwiseAbs().maxCoeff(), b.max.cwiseAbs().maxCoeff());
   return 16.0 * std::numeric_limits<double>::epsilon() * m;
+}
+
+//! Boxes closer than `distance` (>= 0; 0 = none merged) replaced by their
+//! bounding box, repeatedly: their regions would overlap, and one region
+//! costs less than several. Deterministic (input order).
+std::vector<BoundingBox> merge_close(std::vector<BoundingBox> boxes, double distance) {
+  for (bool merged = true; merged && distance > 0;) {
+    merged = false;
+    for (std::size_t a = 0; a < boxes.size() && !merged; ++a)
+      for (std::size_t b = a + 1; b < boxes.size() && !merged; ++b)
+        if (boxes_meet(widened(boxes[a], distance / 2), widened(boxes[b], distance / 2))) {
+          boxes[a].extend(boxes[b].min);
+          boxes[a].extend(boxes[b].max);
+          boxes.erase(boxes.begin() + static_cast<std::ptrdiff_t>(b));
+          merged = true;
+        }
+  }
+  return boxes;
+}
+
+//! The reach of the first pass of measure_cores().
+double first_reach(const FillDeviationOptions& o) {
+  return o.first_reach_fraction * o.reach;
+}
+
+//! A block and the boxes that cover where it can deviate.
+struct Job {
+  const Mesh* block;
+  std::vector<BoundingBox> cores;
+};
+
+//! The deviation of each job: the maximum of measure_region() over its
+//! boxes. First at the reach r1 = first_reach() (boxes closer than 2 r1
+//! merged); a box whose bound exceeds r1 is measured again at the full
+//! reach (those of a job closer than twice the reach merged): a measure at
+//! reach r is an upper bound of the true distance, and equal to it (within
+//! the error bound) when it is <= r (see the header), so the second pass is
+//! needed only there. Tasks run in parallel when `parallel`; the result
+//! does not depend on the thread count.
+std::vector<FillDeviation> measure_cores(const FillDeviationMeter& meter, const std::vector<Job>& jobs,
+                                         const std::vector<const Mesh*>& others, const FillDeviationOptions& options,
+                                         bool parallel, bool local,
+                                         const std::function<void(std::size_t, std::size_t)>& on_done) {
+  std::vector<FillDeviation> deviation(jobs.size());
+  for (FillDeviation& d : deviation) d.error = options.error;
+  std::atomic<std::size_t> done{0};
+  std::size_t total = 0;
+  auto run = [&](const std::vector<std::pair<std::size_t, BoundingBox>>& tasks, double reach) {
+    std::vector<FillDeviation> out(tasks.size());
+    FillDeviationOptions o = options;
+    o.reach = reach;
+    total += tasks.size();
+    auto one = [&](std::size_t t) {
+      out[t] = meter.measure_region(*jobs[tasks[t].first].block, others, tasks[t].second, o);
+      if (on_done) on_done(++done, total);
+    };
+    if (parallel)
+      parallel_for(0, tasks.size(), one);
+    else
+      for (std::size_t t = 0; t < tasks.size(); ++t) one(t);
+    return out;
+  };
+  auto add = [&](FillDeviation& d, const FillDeviation& m) {
+    if (!d.failure.empty()) return;
+    d.failure = m.failure;
+    d.to_input = std::max(d.to_input, m.to_input);
+    d.from_input = std::max(d.from_input, m.from_input);
+  };
+  // Pass 0: each box measured locally (measure_local(), an upper bound);
+  // kept when within the reach, else measured by the two reaches below.
+  std::vector<std::vector<BoundingBox>> pending(jobs.size());
+  if (local) {
+    std::vector<BoundingBox> cover;
+    for (const Job& j : jobs) cover.insert(cover.end(), j.cores.begin(), j.cores.end());
+    for (const Mesh* o : others)
+      if (std::none_of(jobs.begin(), jobs.end(), [&](const Job& j) { return j.block == o; }))
+        cover.push_back(bounding_box(*o));
+    const std::vector<char> outside = meter.faces_outside(cover);
+    std::vector<std::pair<std::size_t, BoundingBox>> local;
+    for (std::size_t i = 0; i < jobs.size(); ++i)
+      for (const BoundingBox& b : jobs[i].cores) local.emplace_back(i, b);
+    std::vector<FillDeviation> out(local.size());
+    total += local.size();
+    auto one = [&](std::size_t t) {
+      out[t] = meter.measure_local(*jobs[local[t].first].block, others, local[t].second, outside, options);
+      if (on_done) on_done(++done, total);
+    };
+    if (parallel)
+      parallel_for(0, local.size(), one);
+    else
+      for (std::size_t t = 0; t < local.size(); ++t) one(t);
+    for (std::size_t t = 0; t < local.size(); ++t) {
+      const FillDeviation& m = out[t];
+      if (m.failure.empty() && std::max(m.to_input, m.from_input) + options.error > options.reach)
+        pending[local[t].first].push_back(local[t].second);
+      else
+        add(deviation[local[t].first], m);
+    }
+  } else {
+    for (std::size_t i = 0; i < jobs.size(); ++i) pending[i] = jobs[i].cores;
+  }
+  const double first = first_reach(options);
+  std::vector<std::pair<std::size_t, BoundingBox>> tasks;
+  for (std::size_t i = 0; i < jobs.size(); ++i)
+    for (const BoundingBox& b : merge_close(pending[i], 2 * first)) tasks.emplace_back(i, b);
+  const std::vector<FillDeviation> measured = run(tasks, first);
+  std::vector<std::vector<BoundingBox>> again(jobs.size());
+  for (std::size_t t = 0; t < tasks.size(); ++t) {
+    const FillDeviation& m = measured[t];
+    if (m.failure.empty() && first < options.reach && std::max(m.to_input, m.from_input) + options.error > first)
+      again[tasks[t].first].push_back(tasks[t].second);
+    else
+      add(deviation[tasks[t].first], m);
+  }
+  tasks.clear();
+  for (std::size_t i = 0; i < jobs.size(); ++i)
+    for (const BoundingBox& b : merge_close(again[i], 2 * options.reach)) tasks.emplace_back(i, b);
+  const std::vector<FillDeviation> remeasured = run(tasks, options.reach);
+  for (std::size_t t = 0; t < tasks.size(); ++t) add(deviation[tasks[t].first], remeasured[t]);
+  return deviation;
+}
+
+void check_options(const FillDeviationOptions& options) {
+  if (!(options.error > 0) || !(options.reach >= 0) ||
+      !(options.first_reach_fraction > 0 && options.first_reach_fraction <= 1))
+    throw InvalidArgumentError(
+        "measure_fill_deviation: the error bound must be > 0, the reach >= 0 and the first reach fraction in (0, 1]");
 }
 
 // ------------------------------------------------------------ fill_columns
@@ -330,20 +502,7 @@ std::vector<BoundingBox> solid_columns(const Mesh& part, double merge_distance) 
       best = std::move(boxes);
     }
   }
-  // Boxes within merge_distance of each other become their bounding box
-  // (their regions would overlap: one region costs less than several).
-  for (bool merged = true; merged && merge_distance > 0;) {
-    merged = false;
-    for (std::size_t a = 0; a < best.size() && !merged; ++a)
-      for (std::size_t b = a + 1; b < best.size() && !merged; ++b)
-        if (boxes_meet(widened(best[a], merge_distance / 2), widened(best[b], merge_distance / 2))) {
-          best[a].extend(best[b].min);
-          best[a].extend(best[b].max);
-          best.erase(best.begin() + static_cast<std::ptrdiff_t>(b));
-          merged = true;
-        }
-  }
-  return best;
+  return merge_close(std::move(best), merge_distance);
 }
 
 std::vector<FillDeviation> measure_fills(const FillDeviationMeter& meter, const std::vector<const Mesh*>& blocks,
@@ -351,38 +510,21 @@ std::vector<FillDeviation> measure_fills(const FillDeviationMeter& meter, const 
                                          const std::vector<const Mesh*>& filled, const FillDeviationOptions& options,
                                          const std::function<void(std::size_t, std::size_t)>& on_done) {
   if (fills.size() != blocks.size()) throw InvalidArgumentError("measure_fills: one fill entry per block expected");
-  std::vector<std::pair<std::size_t, std::optional<BoundingBox>>> tasks;  // (block, box; none = whole block)
-  for (std::size_t i = 0; i < blocks.size(); ++i) {
-    if (!fills[i])
-      tasks.emplace_back(i, std::nullopt);
-    else
-      for (const BoundingBox& b : *fills[i]) tasks.emplace_back(i, b);
-  }
-  std::vector<FillDeviation> measured(tasks.size());
-  std::atomic<std::size_t> done{0};
-  parallel_for(0, tasks.size(), [&](std::size_t t) {
-    const auto& [i, core] = tasks[t];
-    const Mesh& block = *blocks[i];
-    measured[t] = core ? meter.measure_fill(block, filled, {*core}, options) : meter.measure(block, filled, options);
-    if (on_done) on_done(++done, tasks.size());
-  });
-  std::vector<FillDeviation> deviation(blocks.size());
+  check_options(options);
+  std::vector<Job> jobs;
   for (std::size_t i = 0; i < blocks.size(); ++i)
-    if (fills[i]) deviation[i] = meter.measure_fill(*blocks[i], {}, {}, options);  // no box: 0 + the error bound
-  for (std::size_t t = 0; t < tasks.size(); ++t) {
-    FillDeviation& d = deviation[tasks[t].first];
-    const FillDeviation& m = measured[t];
-    if (!d.failure.empty()) continue;
-    d.failure = m.failure;
-    d.to_input = std::max(d.to_input, m.to_input);
-    d.from_input = std::max(d.from_input, m.from_input);
-    d.error = std::max(d.error, m.error);
-  }
+    jobs.push_back({blocks[i], fills[i] ? *fills[i] : std::vector<BoundingBox>{bounding_box(*blocks[i])}});
+  std::vector<FillDeviation> deviation = measure_cores(meter, jobs, filled, options, true, options.local_first, on_done);
+  for (std::size_t i = 0; i < blocks.size(); ++i)
+    if (fills[i]) deviation[i].error += rounding_slack(*blocks[i]);
   return deviation;
 }
 
 struct FillDeviationMeter::Impl {
   explicit Impl(const Mesh& s) : solid(s), index(s) {}
+  FillDeviation measure_at(const Mesh& block, const std::vector<const Mesh*>& others, const BoundingBox& box,
+                           const FillDeviationOptions& options, const std::vector<char>* outside = nullptr) const;
+  std::vector<char> faces_outside(const std::vector<BoundingBox>& cover) const;
   Mesh solid;
   detail::SolidIndex index;
 };
@@ -393,47 +535,65 @@ const Mesh& FillDeviationMeter::solid() const { return impl_->solid; }
 
 FillDeviation FillDeviationMeter::measure(const Mesh& block, const std::vector<const Mesh*>& others,
                                           const FillDeviationOptions& options) const {
-  return measure_region(block, others, bounding_box(block), options);
+  check_options(options);
+  return measure_cores(*this, {Job{&block, {bounding_box(block)}}}, others, options, false, false, {})[0];
 }
 
 FillDeviation FillDeviationMeter::measure_fill(const Mesh& block, const std::vector<const Mesh*>& others,
                                                const std::vector<BoundingBox>& fill,
                                                const FillDeviationOptions& options) const {
-  if (!(options.error > 0) || !(options.reach >= 0))
-    throw InvalidArgumentError("measure_fill_deviation: the error bound must be > 0 and the reach >= 0");
-  FillDeviation d;
-  d.error = options.error + rounding_slack(block);
-  for (const BoundingBox& core : fill) {
-    const FillDeviation r = measure_region(block, others, core, options);
-    if (!r.failure.empty()) {
-      d.failure = r.failure;
-      return d;
-    }
-    d.to_input = std::max(d.to_input, r.to_input);
-    d.from_input = std::max(d.from_input, r.from_input);
-  }
+  check_options(options);
+  FillDeviation d = measure_cores(*this, {Job{&block, fill}}, others, options, false, false, {})[0];
+  d.error += rounding_slack(block);
   return d;
 }
 
 FillDeviation FillDeviationMeter::measure_region(const Mesh& block, const std::vector<const Mesh*>& others,
-                                                 const BoundingBox& box, const FillDeviationOptions& options) const {
-  if (!(options.error > 0) || !(options.reach >= 0))
-    throw InvalidArgumentError("measure_fill_deviation: the error bound must be > 0 and the reach >= 0");
-  const Mesh& solid = impl_->solid;
+                                                 const BoundingBox& core, const FillDeviationOptions& options) const {
+  check_options(options);
+  return impl_->measure_at(block, others, core, options);
+}
+
+FillDeviation FillDeviationMeter::measure_local(const Mesh& block, const std::vector<const Mesh*>& others,
+                                                const BoundingBox& core, const std::vector<char>& outside,
+                                                const FillDeviationOptions& options) const {
+  check_options(options);
+  if (outside.size() != impl_->solid.faces.size())
+    throw InvalidArgumentError("measure_local: one entry of `outside` per input face expected");
+  return impl_->measure_at(block, others, core, options, &outside);
+}
+
+std::vector<char> FillDeviationMeter::faces_outside(const std::vector<BoundingBox>& cover) const {
+  return impl_->faces_outside(cover);
+}
+
+std::vector<char> FillDeviationMeter::Impl::faces_outside(const std::vector<BoundingBox>& cover) const {
+  std::vector<char> outside(solid.faces.size(), 1);
+  for (const BoundingBox& b : cover)
+    for (int f : index.faces_near_closed_box(Box3{b.min, b.max})) outside[static_cast<std::size_t>(f)] = 0;
+  return outside;
+}
+
+FillDeviation FillDeviationMeter::Impl::measure_at(const Mesh& block, const std::vector<const Mesh*>& others,
+                                                   const BoundingBox& box, const FillDeviationOptions& options,
+                                                   const std::vector<char>* outside) const {
   FillDeviation d;
   d.error = options.error;
-  const BoundingBox reach = widened(box, options.reach);
-  const std::vector<int> near = impl_->index.faces_near_closed_box(Box3{reach.min, reach.max});
+  // the local measure (outside != nullptr, see measure_cores()) makes V
+  // around the box alone (reach 0); the distances still look up to the reach
+  const double r = outside ? 0.0 : options.reach;
+  const BoundingBox reach = widened(box, r);
+  const std::vector<int> near = index.faces_near_closed_box(Box3{reach.min, reach.max});
   BoundingBox around = box;
   for (int f : near)
     for (int v : solid.faces[static_cast<std::size_t>(f)]) around.extend(solid.vertices[static_cast<std::size_t>(v)]);
   const double hair = 1e-6 * std::max(around.diagonal(), 1e-300) + options.error;
-  const BoundingBox region = widened(around, options.reach + hair);
+  const BoundingBox region = widened(around, r + hair);
   // The blocks are clipped to `inner` (see local_surface_in_arena()): it
   // still holds the core widened by the reach, where V's surface is ∂S'.
-  const BoundingBox inner = widened(around, options.reach + hair / 2);
+  const BoundingBox inner = widened(around, r + hair / 2);
   if (options.max_faces > 0) {
-    const std::size_t in_region = impl_->index.faces_near_closed_box(Box3{region.min, region.max}).size();
+    const std::size_t in_region = index.faces_near_closed_box(Box3{region.min, region.max}).size();
     if (in_region > options.max_faces) {
       d.failure = "region too large to measure (" + std::to_string(in_region) + " input faces > " +
                   std::to_string(options.max_faces) + ")";
@@ -441,27 +601,55 @@ FillDeviation FillDeviationMeter::measure_region(const Mesh& block, const std::v
     }
   }
   std::vector<const Mesh*> close;
-  for (const Mesh* o : others)
-    if (o != &block && boxes_meet(bounding_box(*o), region)) close.push_back(o);
+  for (const Mesh* o : others) {
+    if (o == &block) continue;
+    // A block none of whose cover boxes meets the region adds nothing to the
+    // solid there (its part in the region lies in the solid): left out.
+    const auto cover = options.others_cover ? options.others_cover->find(o) : FillCoverMap::const_iterator{};
+    const bool meets = options.others_cover && cover != options.others_cover->end()
+                           ? std::any_of(cover->second.begin(), cover->second.end(),
+                                         [&](const BoundingBox& c) { return boxes_meet(c, region); })
+                           : boxes_meet(bounding_box(*o), region);
+    if (meets) close.push_back(o);
+  }
   std::string error;
   const std::optional<Surface> surface =
-      local_surface(solid, impl_->index, block, close, Box3{region.min, region.max}, Box3{inner.min, inner.max}, error);
+      local_surface(solid, index, block, close, Box3{region.min, region.max}, Box3{inner.min, inner.max},
+                    options.overlay_only, error);
   if (!error.empty()) {
     d.failure = error;
     return d;
   }
   if (!surface) {
-    d.failure = "exact union failed (the blocks and the solid touch along an edge or at a point)";
+    d.failure = "the exact surface of the blocks and the solid could not be made (an operand touches itself)";
     return d;
   }
   detail::DistanceMesh patch, input_near, covered;
   detail::append_distance_patch(patch, surface->mesh, &surface->faces);
-  const std::vector<int> wide = impl_->index.faces_near_closed_box(Box3{
-      widened(region, options.reach).min, widened(region, options.reach).max});
+  const BoundingBox look = widened(region, options.reach);
+  const std::vector<int> wide = index.faces_near_closed_box(Box3{look.min, look.max});
   detail::append_distance_patch(input_near, solid, &wide);
   detail::append_distance_patch(covered, solid, &near);
   d.to_input = hausdorff(patch, input_near, options.error);
-  d.from_input = hausdorff(covered, patch, options.error);
+  if (!outside) {
+    d.from_input = hausdorff(covered, patch, options.error);
+    return d;
+  }
+  // Local measure: the faces of V inside the closed inner box are ∂S' (V's
+  // surface in the open inner box is ∂S' there, and ∂S' is closed); the
+  // input faces that meet no cover box are ∂S' too (∂S away from every fill
+  // is on ∂S'). Faces of V reaching past the inner box may be input surface
+  // that a block clipped away buries: not taken.
+  std::vector<int> sure;
+  for (std::size_t q = 0; q < surface->faces.size(); ++q)
+    if (surface->in_inner[q]) sure.push_back(surface->faces[q]);
+  detail::DistanceMesh target;
+  detail::append_distance_patch(target, surface->mesh, &sure);
+  std::vector<int> away;
+  for (int f : wide)
+    if ((*outside)[static_cast<std::size_t>(f)]) away.push_back(f);
+  detail::append_distance_patch(target, solid, &away);
+  d.from_input = hausdorff(covered, target, options.error);
   return d;
 }
 

@@ -6,6 +6,7 @@
 #include "validate/box_separation.h"
 #include "validate/validate_booleans.h"
 #include "subfab/validate/check_single_precision.h"
+#include "subfab/validate/match_frame_blocks.h"
 #include "subfab/validate/measure_fill_deviation.h"
 
 #include <algorithm>
@@ -530,10 +531,12 @@ ValidationReport validate_decomposition(const Mesh& input, const std::vector<Val
   report.checks.push_back(single);
 
   // 9. no slivers
-  CheckReport sliver = named_check("no slivers (thinner than max(1e-4 x diagonal, tolerance) where the model is not)");
+  CheckReport sliver =
+      named_check("no slivers (thinner than max(1e-4 x diagonal, min(tolerance, max height / 4)) where the model is not)");
   {
     StageScope stage(progress, "check: slivers");
-    report.sliver_thickness = std::max(options.sliver_thickness * diagonal, options.tolerance);
+    report.sliver_thickness =
+        sliver_threshold(options.sliver_thickness * diagonal, options.tolerance, options.limits.max_height);
     std::vector<SliverBlock> sb(n);
     for (std::size_t i = 0; i < n; ++i) {
       sb[i].mesh = &blocks[i].mesh;
@@ -572,44 +575,114 @@ ValidationReport validate_decomposition(const Mesh& input, const std::vector<Val
   if (tolerant) {
     CheckReport within = named_check("within the tolerance (symmetric Hausdorff distance of input ∪ blocks to the input)");
     StageScope stage(progress, "check: tolerance");
-    const FillDeviationMeter meter(input);
+    const double error = options.tolerance_error * options.tolerance;
+    // In decompose's frame when the folder has the frame blocks (match_frame_blocks.h):
+    // there the blocks and the turned input share their faces exactly.
+    bool in_frame = options.frame_rotation.has_value() && n > 0;
+    for (std::size_t i = 0; i < n && in_frame; ++i) in_frame = blocks[i].frame_mesh.has_value();
+    std::optional<FrameMatch> frame;
+    if (in_frame) {
+      std::vector<const Mesh*> exported(n), twins(n);
+      for (std::size_t i = 0; i < n; ++i) {
+        exported[i] = &blocks[i].mesh;
+        twins[i] = &*blocks[i].frame_mesh;
+      }
+      frame = match_frame_blocks(input, exported, twins, *options.frame_rotation,
+                                 {.snap_tolerance = options.frame_snap_tolerance});
+      for (std::size_t i = 0; i < n; ++i)
+        if (!frame->refused[i].empty())
+          add_failure(within, block_name(i) + ": frame block refused (frame/ does not match blocks/): " +
+                                  frame->refused[i]);
+    }
+    const Mesh& model = frame ? frame->input : input;
+    const auto measured = [&](std::size_t i) -> const Mesh& { return frame ? *blocks[i].frame_mesh : blocks[i].mesh; };
+    const FillDeviationMeter meter(model);
     std::vector<const Mesh*> sticking;
-    for (std::size_t i : filled) sticking.push_back(&blocks[i].mesh);
+    for (std::size_t i : filled) sticking.push_back(&measured(i));
     // Only the points in the part of a block outside the input can deviate
     // (measure_fill_deviation.h, with C = block ∩ input): measured in boxes
-    // that cover that part (check 4 computed it), near the whole block where
-    // check 4 fell back to the whole input.
+    // that cover that part (check 4 computed it; in the frame, computed
+    // again there), near the whole block where the boolean fell back to the
+    // whole input.
     std::vector<std::optional<std::vector<BoundingBox>>> cover(filled.size());
+    std::vector<std::string> errors(filled.size());
+    // A frame block equal to its exported block, in a frame equal to the
+    // input's (a model decompose did not turn): check 4's part is its part.
+    const bool same_input = frame && frame->input.vertices == input.vertices;
     parallel_for(0, filled.size(), [&](std::size_t k) {
-      if (outside_parts[filled[k]]) cover[k] = solid_columns(*outside_parts[filled[k]], 2 * options.tolerance);
+      try {
+        const std::size_t i = filled[k];
+        const bool same = same_input && blocks[i].frame_mesh->vertices == blocks[i].mesh.vertices;
+        if (frame && !same) {
+          if (!frame->refused[i].empty()) return;
+          const detail::OutsidePart part = detail::outside_part(*sticking[k], model);
+          if (part.mesh) cover[k] = solid_columns(*part.mesh);
+        } else if (outside_parts[i]) {
+          cover[k] = solid_columns(*outside_parts[i]);
+        }
+      } catch (const std::exception& e) {
+        errors[k] = e.what();
+      }
     });
-    const double error = options.tolerance_error * options.tolerance;
-    const std::vector<FillDeviation> dev =
-        measure_fills(meter, sticking, cover, sticking, {.reach = options.tolerance, .error = error},
+    // each block near a box only where it sticks out near it (its part
+    // elsewhere in the region lies in the input: the same model)
+    FillCoverMap others_cover;
+    for (std::size_t k = 0; k < filled.size(); ++k)
+      if (cover[k]) others_cover.emplace(sticking[k], *cover[k]);
+    // Refused frame blocks are not measured (the check has failed).
+    std::vector<const Mesh*> to_measure;
+    std::vector<std::optional<std::vector<BoundingBox>>> to_cover;
+    std::vector<std::size_t> measured_index;
+    for (std::size_t k = 0; k < filled.size(); ++k) {
+      if (!errors[k].empty() || (frame && !frame->refused[filled[k]].empty())) continue;
+      to_measure.push_back(sticking[k]);
+      to_cover.push_back(cover[k]);
+      measured_index.push_back(k);
+    }
+    std::vector<FillDeviation> dev(filled.size());
+    const std::vector<FillDeviation> got =
+        measure_fills(meter, to_measure, to_cover, sticking,
+                      {.reach = options.tolerance, .error = error, .others_cover = &others_cover},
                       [&](std::size_t d, std::size_t total) {
                         if (progress) progress->update(d, total);
                       });
+    for (std::size_t m = 0; m < measured_index.size(); ++m) dev[measured_index[m]] = got[m];
+    // Back to the exported blocks: stretch x D + the rounding (match_frame_blocks.h).
+    const double stretch = frame ? frame->stretch : 1.0;
+    const double rounding = frame ? frame->rounding() : 0.0;
     report.num_filled = filled.size();
-    report.deviation_error = error;
+    report.deviation_error = stretch * error + rounding;
+    report.measured_in_frame = frame.has_value();
+    report.frame_rounding = rounding;
     for (std::size_t k = 0; k < filled.size(); ++k) {
       const std::string who = block_name(filled[k]);
+      if (frame && !frame->refused[filled[k]].empty()) continue;  // reported above
+      if (!errors[k].empty()) {
+        add_failure(within, who + ": boolean failed: " + errors[k]);
+        continue;
+      }
       if (!dev[k].failure.empty()) {
         add_failure(within, who + ": " + dev[k].failure);
         continue;
       }
-      report.deviation_to_input = std::max(report.deviation_to_input, dev[k].to_input);
-      report.deviation_from_input = std::max(report.deviation_from_input, dev[k].from_input);
-      if (dev[k].bound() > options.tolerance)
-        add_failure(within, who + ": deviation up to " + fmt("%.6g", dev[k].bound()) + " > tolerance " +
-                                fmt("%.6g", options.tolerance) + " (sticks out " + fmt("%.6g", dev[k].to_input) +
-                                ", buries the input " + fmt("%.6g", dev[k].from_input) + ", error bound " +
-                                fmt("%.3g", error) + ")");
+      const double to_input = stretch * dev[k].to_input, from_input = stretch * dev[k].from_input;
+      const double bound = stretch * dev[k].bound() + rounding;
+      report.deviation_to_input = std::max(report.deviation_to_input, to_input);
+      report.deviation_from_input = std::max(report.deviation_from_input, from_input);
+      if (bound > options.tolerance)
+        add_failure(within, who + ": deviation up to " + fmt("%.6g", bound) + " > tolerance " +
+                                fmt("%.6g", options.tolerance) + " (sticks out " + fmt("%.6g", to_input) +
+                                ", buries the input " + fmt("%.6g", from_input) + ", error bound " +
+                                fmt("%.3g", report.deviation_error) + ")");
     }
     within.summary = std::to_string(filled.size()) + " block(s) sticking out; deviation " +
                      fmt("%.3g", std::max(report.deviation_to_input, report.deviation_from_input) /
                                      std::max(diagonal, 1e-300)) +
-                     " x diagonal (+- " + fmt("%.2g", error / std::max(diagonal, 1e-300)) + "), tolerance " +
-                     fmt("%.3g", options.tolerance / std::max(diagonal, 1e-300));
+                     " x diagonal (+- " + fmt("%.2g", report.deviation_error / std::max(diagonal, 1e-300)) +
+                     "), tolerance " + fmt("%.3g", options.tolerance / std::max(diagonal, 1e-300)) +
+                     (frame ? "; measured in decompose's frame (rounding back " +
+                                  fmt("%.2g", rounding / std::max(diagonal, 1e-300)) + " x diagonal)"
+                            : std::string());
     report.checks.push_back(within);
   }
 

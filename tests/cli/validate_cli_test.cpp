@@ -8,6 +8,11 @@
 
 #include <nlohmann/json.hpp>
 
+#include <fstream>
+
+#include <Eigen/Geometry>
+
+#include "subfab/mesh/read_mesh.h"
 #include "subfab/mesh/write_mesh.h"
 #include "support/block_test_shapes.h"
 #include "support/test_support.h"
@@ -89,6 +94,58 @@ TEST(ValidateCli, PrintsMilledShapesOfAMaxOverhangDecomposition) {
   }
   EXPECT_NEAR(m["total_filled_volume"].get<double>(), filled, 1e-12 * (1 + filled));
   EXPECT_FALSE(j["checks"].empty());  // the existing keys are still there
+}
+
+// Issue 17: within a tolerance decompose writes its blocks as it holds them
+// in its working frame (frame/), and validate measures check 10 there. A
+// cube with a spike no axis sees, turned so that decompose turns it back:
+// check 10 is measured in the frame and passes; a frame block with a vertex
+// moved is refused (check 10 fails, exit 3); a folder without the frame
+// blocks (written before them) is measured the old way and passes.
+TEST(ValidateCli, MeasuresCheckTenInDecomposesFrameAndRefusesATamperedFrameBlock) {
+  const fs::path dir = test::temp_dir();
+  Mesh spike = read_mesh(test::data_path("regression/cube_tiny_diagonal_spike.obj"));
+  transform_mesh(spike, Eigen::AngleAxisd(0.3, Vec3(1, 2, 3).normalized()).toRotationMatrix(), Vec3::Zero());
+  const fs::path mesh = dir / "turned_spike.obj";
+  write_mesh(spike, mesh);
+  const fs::path out = dir / "out";
+  const auto d = run_subfab("decompose " + quoted(mesh) + " -o " + quoted(out) + " --tolerance 5e-4 --no-view --quiet");
+  ASSERT_EQ(d.exit_code, 0) << d.output;
+  auto doc = nlohmann::ordered_json::parse(slurp(out / "decomposition.json"));
+  ASSERT_TRUE(doc.contains("frame"));
+  ASSERT_NE(doc["rotation"][0][0].get<double>(), 1.0);  // turned
+  ASSERT_FALSE(doc["blocks"].empty());
+  const std::string frame_block = doc["blocks"][0]["frame_mesh"].get<std::string>();
+  EXPECT_EQ(frame_block, "frame/block_000.obj");
+  ASSERT_TRUE(fs::exists(out / frame_block));
+  EXPECT_LT(doc["frame"]["max_rounding"].get<double>(), 1e-9 * doc["input"]["bbox_diagonal"].get<double>());
+
+  const auto v = run_subfab("validate " + quoted(mesh) + " " + quoted(out) + " --json --quiet");
+  ASSERT_EQ(v.exit_code, 0) << v.output;
+  const auto j = json_of(v.output);
+  EXPECT_TRUE(j["deviation"]["measured_in_frame"].get<bool>());
+  EXPECT_GE(j["deviation"]["error_bound"].get<double>(), j["deviation"]["frame_rounding"].get<double>());
+  ASSERT_EQ(j["checks"].size(), 10u);
+
+  // A vertex of the frame block moved by 1e-3 x diagonal: refused.
+  const Mesh good = read_mesh(out / frame_block);
+  Mesh moved = good;
+  moved.vertices[0].z() += 1e-3 * doc["input"]["bbox_diagonal"].get<double>();
+  write_mesh(moved, out / frame_block);
+  const auto t = run_subfab("validate " + quoted(mesh) + " " + quoted(out) + " --quiet");
+  EXPECT_EQ(t.exit_code, 3) << t.output;
+  EXPECT_NE(t.output.find("block 000: frame block refused (frame/ does not match blocks/): vertex 0"),
+            std::string::npos) << t.output;
+  write_mesh(good, out / frame_block);
+
+  // Without the frame blocks (an older folder): the exported blocks are measured.
+  doc.erase("frame");
+  for (auto& b : doc["blocks"]) b.erase("frame_mesh");
+  std::ofstream(out / "decomposition.json") << doc.dump(2) << "\n";
+  fs::remove_all(out / "frame");
+  const auto old = run_subfab("validate " + quoted(mesh) + " " + quoted(out) + " --json --quiet");
+  ASSERT_EQ(old.exit_code, 0) << old.output;
+  EXPECT_FALSE(json_of(old.output)["deviation"]["measured_in_frame"].get<bool>());
 }
 
 TEST(ValidateCli, AnExactDecompositionSaysItsMilledShapesAreItsBlocks) {

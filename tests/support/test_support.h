@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <sys/wait.h>
 #include <filesystem>
 #include <fstream>
@@ -20,14 +21,20 @@ inline std::filesystem::path data_path(const std::string& name) {
   return std::filesystem::path(SUBFAB_DATA_DIR) / name;
 }
 
-//! Path of a file in ../shared/models (present beside the checkout in CI).
-inline std::filesystem::path models_path(const std::string& name) {
-  return std::filesystem::path(SUBFAB_MODELS_DIR) / name;
+//! The shared models folder: $SUBFAB_MODELS_DIR when set (a worktree whose
+//! ../shared is not the models' parent), else ../shared/models beside the
+//! checkout (present in CI).
+inline std::filesystem::path models_dir() {
+  if (const char* dir = std::getenv("SUBFAB_MODELS_DIR"); dir && *dir) return dir;
+  return SUBFAB_MODELS_DIR;
 }
+
+//! Path of a file in the shared models folder.
+inline std::filesystem::path models_path(const std::string& name) { return models_dir() / name; }
 
 //! True when ../shared/models is there.
 inline bool have_shared_models() {
-  return std::filesystem::is_directory(std::filesystem::path(SUBFAB_MODELS_DIR));
+  return std::filesystem::is_directory(models_dir());
 }
 
 //! A fresh, empty folder under the build tree, unique per test.

@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "subfab/validate/validate_decomposition.h"
+#include "subfab/validate/find_slivers.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "support/block_test_shapes.h"
 #include "subfab/core/error.h"
@@ -350,6 +352,32 @@ TEST(ValidateDecomposition, SliverFailsCheckNine) {
   ValidationOptions o = fast_options();
   o.tolerance = 0.01;
   EXPECT_DOUBLE_EQ(validate_decomposition(cube, blocks, o).sliver_thickness, 0.01);
+}
+
+// Regression (issue 17, egea at --max-height 0.1 --tolerance 8.3e-2: all 6
+// blocks "slivers" because T = 39.4 against the height limit 47.4): the
+// sliver threshold never exceeds a quarter of the height limit. Two halves
+// of a unit cube, 0.5 thick each, under a tolerance of 0.6 and a height
+// limit of 0.5: the threshold is 0.125, no sliver; without the limit, 0.6.
+TEST(ValidateDecomposition, SliverThresholdIsCappedByTheHeightLimit) {
+  EXPECT_DOUBLE_EQ(sliver_threshold(1e-3, 0.6, 0.5), 0.125);
+  EXPECT_DOUBLE_EQ(sliver_threshold(1e-3, 0.6, std::numeric_limits<double>::infinity()), 0.6);
+  EXPECT_DOUBLE_EQ(sliver_threshold(1e-3, 0.0, 0.5), 1e-3);     // T = 0: the floor, whatever the limit
+  EXPECT_DOUBLE_EQ(sliver_threshold(1e-3, 0.6, 1e-3), 1e-3);    // never below the floor
+  const Mesh cube = test::box_solid({0, 0, 0}, {1, 1, 1});
+  const std::vector<ValidationBlock> blocks = {
+      make_block(test::box_solid({0, 0, 0}, {1, 1, 0.5}), Vec3::UnitZ(), Eigen::Matrix3d::Identity()),
+      make_block(test::box_solid({0, 0, 0.5}, {1, 1, 1}), Vec3::UnitZ(), Eigen::Matrix3d::Identity())};
+  ValidationOptions o = fast_options();
+  o.tolerance = 0.6;
+  const ValidationReport unlimited = validate_decomposition(cube, blocks, o);
+  EXPECT_DOUBLE_EQ(unlimited.sliver_thickness, 0.6);
+  EXPECT_FALSE(check(unlimited, 9).passed);  // both halves thinner than T where the cube is 1 thick
+  o.limits.max_height = 0.5;
+  const ValidationReport limited = validate_decomposition(cube, blocks, o);
+  EXPECT_DOUBLE_EQ(limited.sliver_thickness, 0.125);
+  EXPECT_TRUE(check(limited, 9).passed) << (check(limited, 9).failures.empty() ? "" : check(limited, 9).failures[0]);
+  EXPECT_TRUE(check(limited, 6).passed);
 }
 
 TEST(ValidateDecomposition, ThinModelThinBlocksPass) {

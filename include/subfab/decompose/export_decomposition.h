@@ -5,6 +5,14 @@
 //!   OUTDIR/blocks/block_NNN.obj each block, input coordinates and units
 //!   OUTDIR/mill/block_NNN.stl   the block moved rigidly so its milling
 //!                               direction is +Z and its base lies on z = 0
+//!   OUTDIR/frame/block_NNN.obj  (within a tolerance only) the block as
+//!                               decompose holds it, in its working frame
+//!                               (canonical = rotation x input), every
+//!                               coordinate exact (frame_twin(): same faces
+//!                               and vertex ids as blocks/block_NNN.obj,
+//!                               each vertex the point that was rounded to
+//!                               it); `subfab validate` measures check 10 on
+//!                               them (docs/validate.md)
 //!
 //! decomposition.json:
 //!   {"format": "subfab.decomposition", "version": 1,
@@ -26,8 +34,12 @@
 //!              "decomposed_mesh": the mesh the blocks decompose (the input path, "input_mesh_repaired.obj",
 //!              "input_repaired.obj" or "input_restored.obj")},
 //!    "rotation": 3x3 (canonical = rotation x input),
+//!    "frame": (within a tolerance only) {"snap_tolerance" (rotate_into_frame()'s, x bbox diagonal),
+//!              "max_rounding" (model units: largest distance between a vertex of blocks/ and its frame/
+//!              twin turned back, informational; validate measures it again)},
 //!    "parameters": {"max_height_fraction", "max_height", "machine", "orient", "grid_factor"},
-//!    "blocks": [{"id", "mesh", "machine_mesh", "direction" (unit, input coordinates),
+//!    "blocks": [{"id", "mesh", "machine_mesh", ["frame_mesh" (within a tolerance only)],
+//!                "direction" (unit, input coordinates),
 //!                "axis" (canonical, "+z"), "base_offset" (min of v.direction), "height",
 //!                "volume", "thickness" (block_thickness(): smallest mean chord length along the
 //!                block's frame axes, model units), "bbox" {"min", "max"}, "machine_transform" 4x4
@@ -72,6 +84,8 @@ struct ExportedBlock {
                                 // hundredths of a degree from rounding on exact blocks; <= --max-overhang)
   BoundingBox bbox;         // input coordinates
   Eigen::Matrix4d machine_transform = Eigen::Matrix4d::Identity();  // input -> machine coordinates
+  Mesh frame_mesh;          // canonical frame, exact: what `mesh` was rounded from (frame_twin(); same faces)
+  double frame_rounding = 0;  // max |mesh vertex - rotation^T x frame vertex| (model units)
 };
 
 //! The rigid map of canonical axis `axis` to +Z (a signed permutation with
@@ -110,8 +124,10 @@ struct ExportInfo {
 std::string decomposition_json(const Mesh& input, const DecomposeResult& result,
                                const std::vector<ExportedBlock>& blocks, const ExportInfo& info);
 
-//! Writes OUTDIR/decomposition.json, OUTDIR/blocks/*.obj and OUTDIR/mill/*.stl
-//! (creating the folders; stale block files from an earlier run are removed).
+//! Writes OUTDIR/decomposition.json, OUTDIR/blocks/*.obj and OUTDIR/mill/*.stl,
+//! and within a tolerance (result.tolerance > 0) OUTDIR/frame/*.obj (creating
+//! the folders; stale block files from an earlier run are removed; at
+//! tolerance 0 the output is what it was before the frame blocks existed).
 //! Progress and cleanup info go to info.options.progress.
 //! \return the exported blocks (make_exported_blocks()), as written
 //! \throw IoError when a file cannot be written; AlgorithmError when a block

@@ -34,6 +34,8 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "subfab/core/progress.h"
 #include "subfab/geometry/axis.h"
 #include "subfab/decompose/decompose.h"
@@ -57,6 +59,9 @@ struct FinalBlock {
   Axis axis = Axis::PosZ;          // milling axis in the canonical frame
   Vec3 direction = Vec3::UnitZ();  // unit milling direction in input coordinates (rotation^T x axis)
   int source_box = -1;             // the ordered box it was carved from
+  Mesh frame_mesh;                 // the block as decompose() holds it (canonical frame): mesh's faces and
+                                   // vertex ids, each vertex the canonical point it was rounded from
+                                   // (frame_twin()); `subfab validate` measures check 10 on it
 };
 
 //! What the cleanup did.
@@ -71,6 +76,20 @@ struct FinalizeResult {
   CleanupReport cleanup;                // summed over blocks
   std::size_t num_dropped_blocks = 0;   // blocks thinner than the tolerance, removed entirely
 };
+
+//! The canonical-frame twin of a block rounded to the input frame: vertex i
+//! of `rounded` was rounded from frame[i] (canonical frame), and cleanups
+//! (finalize_blocks()'s collapses and flips, the export's single-precision
+//! cleanup) made `finished` of it. Returns `finished`'s faces (same vertex
+//! ids) with each vertex replaced by the frame point that was rounded to it
+//! (a collapse keeps one of the rounded points; the least frame point, in
+//! lexicographic order, when several rounded to it), or, for a point no
+//! frame point rounded to (moved by a cleanup), by `rotation` x it
+//! (canonical = rotation x input, rounded once). So the twin rounds back to
+//! `finished` vertex by vertex, and shares its points with the canonical
+//! input and the neighbouring blocks wherever `finished` does.
+Mesh frame_twin(const Mesh& finished, const Mesh& rounded, const std::vector<Vec3>& frame,
+                const Eigen::Matrix3d& rotation);
 
 //! Maps the blocks of `result` (canonical frame) to the input frame, cleans
 //! the rounding artefacts and verifies every block (see the file comment).

@@ -45,6 +45,7 @@
 
 #include "subfab/core/progress.h"
 #include "subfab/fidelity/find_infeasible_features.h"
+#include "subfab/geometry/rotate_into_frame.h"
 #include "subfab/mesh/mesh.h"
 
 namespace subfab {
@@ -74,7 +75,7 @@ struct OrientOptions {
   // would otherwise tilt, by a hair, faces and edges the new frame makes
   // axis-aligned, and exact validity sees any tilt (a turned-back box would
   // need many blocks, or none would fit its corners).
-  double snap_tolerance = 1e-9;  // fraction of the bounding-box diagonal (0 = no snapping)
+  double snap_tolerance = kFrameSnapTolerance;  // 1e-9: fraction of the bounding-box diagonal (0 = no snapping)
   int num_candidates = 6;       // best distinct local optima refined exactly and ranked (besides the input frame)
   bool check_feasibility = true;  // skip candidate frames with infeasible creases/corners (find_infeasible_features)
   // Step 6: number of face tests (frames x faces of the exact feasibility
@@ -109,13 +110,7 @@ struct OrientResult {
   FeasibilityResult infeasible;  // infeasible features of the chosen frame (empty when feasible or unchecked)
 };
 
-//! The mesh in the frame `rotation` (canonical = rotation * input), as
-//! decompose() and orient_mesh() use it: unchanged (bit for bit) for the
-//! identity; otherwise turned, then along each axis coordinates that differ by
-//! at most snap_tolerance x bbox diagonal (chains of them) are set to the
-//! group's median value, unless that would make a face degenerate (then the
-//! turned mesh is returned as is). Vertex and face ids are kept.
-Mesh rotate_into_frame(const Mesh& mesh, const Eigen::Matrix3d& rotation, double snap_tolerance);
+// rotate_into_frame() (the mesh in a frame, as decompose() turns it): subfab/geometry/rotate_into_frame.h
 
 //! E(R) above for the mesh's faces (zero-area faces contribute nothing).
 //! \throw InvalidMeshError if the total area is zero.

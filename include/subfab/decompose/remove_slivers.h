@@ -10,7 +10,7 @@
 //! along the axes of its frame, block_thickness(); the model's thickness
 //! there is the mean length of the input segments holding the block's
 //! segments on a grid of lines along that axis). decompose() sets
-//! min_thickness = max(1e-4 x diagonal, T), as validate does.
+//! min_thickness = max(1e-4 x diagonal, min(T, H / 4)) (H the height limit), as validate does.
 //!
 //! The rule: within a tolerance T > 0, every sliver is removed when that is
 //! measured within T, in this order:

@@ -56,6 +56,20 @@ struct SliverMeasure {
   bool sliver = false;
 };
 
+//! The sliver threshold of decompose's sliver stage and validate's check 9
+//! (they must agree): max(floor, min(tolerance, max_height / 4)), model
+//! units. `floor` is 1e-4 x the diagonal (where the model is thicker, no
+//! block is thinner: thesis 4.3.4), the tolerance raises it (issue 17: no
+//! block thinner than T). Capped at a quarter of the height limit: a block's
+//! thickness is at most its mean chord along its milling direction, i.e. its
+//! mean height, and a block filling the limit with a pointed or sloped top
+//! has a mean height of H/3 (a cone) to H/2 (a wedge); at T near H every
+//! block would be a "sliver" (egea at --max-height 0.1 --tolerance 8.3e-2:
+//! T = 39.4 against H = 47.4, all 6 blocks 12.9 to 39 thick). H/4 keeps the
+//! thin ones (a quarter of the allowed height on average) flagged.
+//! max_height = infinity (no limit): max(floor, tolerance) as before.
+double sliver_threshold(double floor, double tolerance, double max_height);
+
 //! Measures every block (in parallel; the result does not depend on the
 //! thread count). \throw InvalidArgumentError when min_thickness <= 0 or
 //! num_lines < 1.

@@ -22,7 +22,13 @@
 //!      kernel, deterministic arena; the two clips' cut faces are never
 //!      coplanar, which CGAL corefines slowly); the faces of V on the planes
 //!      of R' and R'' are cut faces, the others are ∂S' exactly within R'',
-//!      which holds box(F) widened by r;
+//!      which holds box(F) widened by r. Only the surface of V is needed,
+//!      not a 2-manifold solid: successive CGAL unions make it when they can;
+//!      when one cannot (operands touching along an edge or at a point: the
+//!      union is not a 2-manifold, which CGAL refuses), the overlay of
+//!      union_surface.h makes it from the same operands (pairwise
+//!      corefinement, each face kept iff its interior lies outside every
+//!      other operand, exact);
 //!   3. to_input = one-sided Hausdorff distance from those faces to ∂S;
 //!      from_input = from Q to those faces (CGAL bounded error).
 //! Why local is enough: a point of ∂S' outside box(F) was a point of the
@@ -32,6 +38,19 @@
 //! the local distances are within it; and with r >= the tolerance, every
 //! nearest point within r of a point of Q lies inside R', where V's surface
 //! is ∂S' exactly.
+//! Any reach gives an upper bound: the patch of step 3 is a part of ∂S' and
+//! the input faces a part of ∂S, so each measured distance is >= the true
+//! one; and a point whose true distance is <= r has its nearest point in
+//! the measured patch, so where the measured maximum (plus the error bound)
+//! is <= r it is the true maximum. measure(), measure_fill() and
+//! measure_fills() use that (issue 17: egea's fills at T = 8.3e-2 of the
+//! diagonal made regions of nearly the whole model, 64 per block): they
+//! measure first with reach r1 = first_reach_fraction x the reach, and again
+//! with the whole reach only in the boxes whose bound exceeds r1 (the fill
+//! boxes of a block closer than twice the reach measured as one region).
+//! measure_fills() measures each box before that with measure_local() (V
+//! made around the box alone, no reach), using that ∂S away from every fill
+//! box lies on ∂S' (shown below): an upper bound, kept when <= the reach.
 //!
 //! measure_fill() (issue 17: the whole-box measure took > 9 min on max
 //! planck's big blocks) measures the same distance only where the milled
@@ -58,6 +77,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -68,6 +88,10 @@
 
 namespace subfab {
 
+//! Per block sticking out of the solid: closed boxes that cover where it
+//! does (block \ solid), see FillDeviationOptions::others_cover.
+using FillCoverMap = std::map<const Mesh*, std::vector<BoundingBox>>;
+
 //! Options of FillDeviationMeter::measure().
 struct FillDeviationOptions {
   double reach = 0.0;  // model units, >= 0: the input surface within this of the block's box is checked
@@ -75,6 +99,24 @@ struct FillDeviationOptions {
   double error = 0.0;  // error bound of the Hausdorff distances, model units (> 0)
   std::size_t max_faces = 0;  // > 0: give up (failure "region too large") when more input faces than this lie in
                               // the region, before any boolean (the exact booleans grow with it); 0 = no cap
+  double first_reach_fraction = 0.25;  // (0, 1]: measure() / measure_fill() / measure_fills() measure first with
+                                       // this fraction of the reach, and again with the whole reach only the boxes
+                                       // whose bound exceeds it (exact either way, see the file comment); 1 = one
+                                       // pass. measure_region() uses the reach as given.
+  bool local_first = true;  // measure_fills() only (it measures every filled block): true: each box first with
+                            // measure_local() (V made around the box alone), that bound kept when it is <=
+                            // the reach, the two reaches only for the others; false: the two reaches only.
+                            // measure() and measure_fill() measure one block and the input near it for
+                            // merges (docs/decompose.md 8b): the two reaches always
+  const FillCoverMap* others_cover = nullptr;  // optional: an other block listed here with boxes covering
+                                              // block \ solid is left out of a region none of them meets
+                                              // (its part there lies in the solid: nothing changes; validate
+                                              // check 10, issue 17: the exported blocks of a turned model,
+                                              // rounded back to the input frame, touch one another where
+                                              // CGAL cannot unite them, and the overlay is slow); others
+                                              // are left out of a region their bounding box does not meet
+  bool overlay_only = false;  // true: always make the local surface with union_surface()'s overlay (tests and
+                              // measurements); false: successive CGAL unions, the overlay when one fails
 };
 
 //! Result of FillDeviationMeter::measure() (model units).
@@ -107,10 +149,11 @@ class FillDeviationMeter {
   FillDeviation measure(const Mesh& block, const std::vector<const Mesh*>& others,
                         const FillDeviationOptions& options) const;
 
-  //! The same distance, measured only near `core` (a closed box): exact for
-  //! the points of ∂S' in `core` and of ∂S in `core` (steps 1-3 of the file
+  //! The same distance, measured only near `core` (a closed box), with the
+  //! reach as given: an upper bound for the points of ∂S' in `core` and of
+  //! ∂S in `core`, exact where it is <= the reach (steps 1-3 of the file
   //! comment with box(block) replaced by `core`). measure() is
-  //! measure_region() with core = box(block).
+  //! measure_region() with core = box(block), first with a smaller reach.
   FillDeviation measure_region(const Mesh& block, const std::vector<const Mesh*>& others, const BoundingBox& core,
                                const FillDeviationOptions& options) const;
 
@@ -120,6 +163,20 @@ class FillDeviationMeter {
   //! rounding slack of the file comment. No box: nothing deviates (0).
   FillDeviation measure_fill(const Mesh& block, const std::vector<const Mesh*>& others,
                              const std::vector<BoundingBox>& fill, const FillDeviationOptions& options) const;
+
+  //! An upper bound of the same distance near `core` with V made around
+  //! `core` alone (no reach), cheaper than measure_region() when the reach
+  //! is large (issue 17: egea at 8.3e-2 of the diagonal). `outside` (from
+  //! faces_outside()) marks the input faces that meet no box covering any
+  //! filled block's fill: those lie on ∂S' (see the file comment), the
+  //! buried input faces in `core` are measured to them and to V's faces in
+  //! V's inner box; the patch to the input faces within the reach. Exact
+  //! when each nearest point lies in V's inner box or on such a face, an
+  //! upper bound always (both targets are parts of the true surfaces).
+  FillDeviation measure_local(const Mesh& block, const std::vector<const Mesh*>& others, const BoundingBox& core,
+                              const std::vector<char>& outside, const FillDeviationOptions& options) const;
+  //! Per input face: 1 when its bounding box meets no box of `cover`.
+  std::vector<char> faces_outside(const std::vector<BoundingBox>& cover) const;
 
   const Mesh& solid() const;
 
@@ -158,13 +215,15 @@ std::optional<std::vector<BoundingBox>> fill_columns(const Mesh& carved, const M
 //! tile of an 8 x 8 grid over the footprint (one box per tile), each widened
 //! by 16 ulps of the largest coordinate (the part's vertices were rounded
 //! from exact points). Boxes closer than `merge_distance` (model units, >=
-//! 0; 0 = none merged) are replaced by their bounding box (check 10 passes
-//! twice the reach: such boxes' regions overlap, and one region costs less
-//! than two). Empty for an empty mesh.
+//! 0; 0 = none merged) are replaced by their bounding box (measure_fills()
+//! merges the boxes closer than twice the reach of each of its passes: such
+//! boxes' regions overlap, and one region costs less than two). Empty for
+//! an empty mesh.
 std::vector<BoundingBox> solid_columns(const Mesh& part, double merge_distance = 0.0);
 
 //! measure_fill() of many blocks at once: one parallel task per box (a big
-//! block has many), measure() for a block whose `fills` entry is nullopt
+//! block has many; in each pass, boxes of a block closer than twice the pass's
+//! reach merged), measure() for a block whose `fills` entry is nullopt
 //! (fill_columns() could not bound it). blocks[i] sticks out with the fill
 //! boxes fills[i]; `filled` lists every block that sticks out (the others
 //! near each region; a block is skipped in its own list). Deterministic

@@ -16,12 +16,14 @@
 //!   8. each machine mesh, in single precision (as binary STL stores it), is
 //!      still a closed solid without zero-area faces or self-intersections
 //!      (check_single_precision.h);
-//!   9. no slivers: no block thinner than max(1e-4 x diagonal, T) where the
+//!   9. no slivers: no block thinner than max(1e-4 x diagonal, min(T, H / 4)) (H the height limit) where the
 //!      model is thicker (find_slivers.h; T = the tolerance, 0 when exact);
 //!  10. (decompositions within a tolerance T only) the model made, the input
 //!      with the blocks that stick out of it, lies within T of the input:
 //!      symmetric Hausdorff distance between the surfaces <= T (checks 4 and
-//!      5 then accept blocks sticking out and samples within T).
+//!      5 then accept blocks sticking out and samples within T); measured in
+//!      decompose's working frame on the frame blocks when the folder has
+//!      them (match_frame_blocks.h), else on the exported blocks.
 #pragma once
 
 #include <cstddef>
@@ -153,6 +155,8 @@ struct ValidationBlock {
   Vec3 direction = Vec3::UnitZ();         // unit milling direction, input coordinates
   std::optional<Mesh> machine_mesh;       // the exported machine mesh, if any
   Eigen::Matrix4d machine_transform = Eigen::Matrix4d::Identity();  // input -> machine coordinates
+  std::optional<Mesh> frame_mesh;         // the block as decompose holds it in its working frame
+                                          // (OUTDIR/frame/, within a tolerance; match_frame_blocks.h)
 };
 
 //! Limits the decomposition was asked to respect (model units).
@@ -178,6 +182,14 @@ struct ValidationOptions {
                                       // made (input ∪ blocks) against the input: symmetric Hausdorff
                                       // distance between the surfaces (FillDeviationMeter) <= it
   double tolerance_error = 0.02;      // check 10: error bound of the distances, fraction of the tolerance
+  std::optional<Eigen::Matrix3d> frame_rotation;  // check 10: decompose's frame (decomposition.json "rotation",
+                                      // canonical = rotation x input). Set, and every block with its frame_mesh:
+                                      // check 10 measures the frame blocks against the input turned as decompose
+                                      // turned it, the rounding back to the exported blocks added to the bound
+                                      // (match_frame_blocks.h; refused frame blocks fail the check). Unset, or a
+                                      // block without one (folders written before the frame blocks): the exported
+                                      // blocks against the input (slow on turned models)
+  double frame_snap_tolerance = 1e-9;  // rotate_into_frame()'s snapping (decomposition.json "frame"."snap_tolerance")
   bool measure_milled_shapes = true;  // informational: each block's milled shape (milled_shape.h)
   double milled_hausdorff_error = 1e-5;  // error bound of its distances (fraction of the diagonal)
   Progress* progress = nullptr;       // progress per check (nullptr: silent)
@@ -203,7 +215,9 @@ struct ValidationReport {
   double volume_sticking_out = 0.0; // volume of the blocks outside the input, summed (model units^3; check 4)
   double deviation_to_input = 0.0;  // how far the blocks stick out (max over the filled blocks)
   double deviation_from_input = 0.0;  // how deep the input surface lies under them
-  double deviation_error = 0.0;     // error bound of both
+  double deviation_error = 0.0;     // error bound of both (with the frame's rounding when measured in it)
+  bool measured_in_frame = false;   // check 10 measured the frame blocks in decompose's frame
+  double frame_rounding = 0.0;      // then: FrameMatch::rounding(), part of deviation_error (model units)
   bool passed() const {
     for (const CheckReport& c : checks)
       if (!c.passed) return false;

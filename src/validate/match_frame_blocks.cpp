@@ -1,0 +1,115 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "subfab/validate/match_frame_blocks.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "geometry/rotate_accurately.h"
+#include "subfab/core/parallel.h"
+#include "subfab/geometry/rotate_into_frame.h"
+
+namespace subfab {
+namespace {
+
+double largest_coordinate(const Mesh& mesh) {
+  double m = 0.0;
+  for (const Vec3& v : mesh.vertices) m = std::max(m, v.cwiseAbs().maxCoeff());
+  return m;
+}
+
+//! Max |exported vertex - back x frame vertex|, or why the frame block does not match.
+struct BlockMatch {
+  double offset = 0.0;
+  double largest = 0.0;  // largest |coordinate| of either
+  std::string refused;
+};
+
+BlockMatch match_block(const Mesh& exported, const Mesh& frame, const Eigen::Matrix3d& back, double max_offset) {
+  BlockMatch r;
+  if (frame.num_vertices() != exported.num_vertices() || frame.num_faces() != exported.num_faces()) {
+    r.refused = "it has " + std::to_string(frame.num_vertices()) + " vertices and " +
+                std::to_string(frame.num_faces()) + " faces, the exported block " +
+                std::to_string(exported.num_vertices()) + " and " + std::to_string(exported.num_faces());
+    return r;
+  }
+  if (frame.faces != exported.faces) {
+    r.refused = "its faces are not the exported block's (same vertex ids expected)";
+    return r;
+  }
+  std::size_t worst = 0;
+  for (std::size_t v = 0; v < frame.num_vertices(); ++v) {
+    const Vec3 turned = detail::rotate_accurately(back, frame.vertices[v]);
+    const double d = (exported.vertices[v] - turned).norm();
+    r.largest = std::max({r.largest, exported.vertices[v].cwiseAbs().maxCoeff(), turned.cwiseAbs().maxCoeff()});
+    if (!(d <= r.offset)) {  // NaN counts as the worst
+      r.offset = std::isnan(d) ? std::numeric_limits<double>::infinity() : d;
+      worst = v;
+    }
+  }
+  if (!(r.offset <= max_offset)) {
+    char buf[256];
+    std::snprintf(buf, sizeof buf, "vertex %zu turned back lies %.3g from the exported vertex (at most %.3g allowed)",
+                  worst, r.offset, max_offset);
+    r.refused = buf;
+  }
+  return r;
+}
+
+}  // namespace
+
+std::size_t FrameMatch::num_refused() const {
+  return static_cast<std::size_t>(
+      std::count_if(refused.begin(), refused.end(), [](const std::string& s) { return !s.empty(); }));
+}
+
+FrameMatch match_frame_blocks(const Mesh& input, const std::vector<const Mesh*>& blocks,
+                              const std::vector<const Mesh*>& frame_blocks, const Eigen::Matrix3d& rotation,
+                              const FrameMatchOptions& options) {
+  FrameMatch m;
+  m.refused.assign(blocks.size(), std::string());
+  const double orth = (rotation.transpose() * rotation - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
+  if (!std::isfinite(orth) || orth > options.max_orthogonality_error || !(rotation.determinant() > 0.0)) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "the recorded rotation is not a rotation (max |R^T R - I| = %.3g, det %.6g)",
+                  orth, rotation.determinant());
+    m.frame_error = buf;
+    m.refused.assign(blocks.size(), m.frame_error);
+    return m;
+  }
+  // |R^T x|^2 <= |R^T R|_2 |x|^2 (R and R^T have the same singular values) <= (1 + |R^T R - I|_2) |x|^2,
+  // |.|_2 <= 3 x the max entry (computed within a few eps), and sqrt(1 + e) <= 1 + e / 2.
+  constexpr double eps = std::numeric_limits<double>::epsilon();
+  m.stretch = 1.0 + 1.5 * (orth + 8 * eps) + 8 * eps;
+  const Eigen::Matrix3d back = rotation.transpose();
+  m.input = rotate_into_frame(input, rotation, options.snap_tolerance);
+  double largest = largest_coordinate(input);
+  for (std::size_t v = 0; v < input.num_vertices(); ++v) {
+    const Vec3 turned = detail::rotate_accurately(back, m.input.vertices[v]);
+    m.input_offset = std::max(m.input_offset, (input.vertices[v] - turned).norm());
+    largest = std::max(largest, turned.cwiseAbs().maxCoeff());
+  }
+  const double max_offset =
+      options.max_vertex_offset * std::max(bounding_box(input).diagonal(), largest_coordinate(input));
+  std::vector<BlockMatch> r(blocks.size());
+  parallel_for(0, blocks.size(), [&](std::size_t i) {
+    if (i >= frame_blocks.size() || !frame_blocks[i]) {
+      r[i].refused = "no frame block";
+      return;
+    }
+    r[i] = match_block(*blocks[i], *frame_blocks[i], back, max_offset);
+  });
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    m.refused[i] = std::move(r[i].refused);
+    if (!m.refused[i].empty()) continue;
+    m.block_offset = std::max(m.block_offset, r[i].offset);
+    largest = std::max(largest, r[i].largest);
+  }
+  // Each offset: R^T f rounded once per coordinate (Dot2, <= 1 ulp), then a
+  // difference and a norm (a few eps of the offset, itself <= the largest).
+  m.computing_error = 8 * eps * largest;
+  return m;
+}
+
+}  // namespace subfab
