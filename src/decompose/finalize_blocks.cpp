@@ -344,10 +344,12 @@ std::string RoundedBlockCheck::defect(const Block& block, Mesh* finished) const 
 namespace {
 
 //! Steps 1-3 of finalize_blocks() on every block of `result`, in parallel.
-std::vector<Finished> finish_blocks(const Mesh& input, const DecomposeResult& result, const FinalizeOptions& options) {
+//! \param with_frame also make each block's frame twin (finalize_blocks(); the checks need none)
+std::vector<Finished> finish_blocks(const Mesh& input, const DecomposeResult& result, const FinalizeOptions& options,
+                                    bool with_frame) {
   const RoundedBlockCheck::Impl finisher(input, result, options);
   std::vector<Finished> done(result.blocks.size());
-  parallel_for(0, result.blocks.size(), [&](std::size_t i) { done[i] = finisher.finish(result.blocks[i], true); });
+  parallel_for(0, result.blocks.size(), [&](std::size_t i) { done[i] = finisher.finish(result.blocks[i], with_frame); });
   return done;
 }
 
@@ -355,9 +357,7 @@ std::vector<Finished> finish_blocks(const Mesh& input, const DecomposeResult& re
 
 std::vector<std::string> block_defects_after_rounding(const Mesh& input, const DecomposeResult& result,
                                                       const FinalizeOptions& options) {
-  const RoundedBlockCheck::Impl finisher(input, result, options);
-  std::vector<Finished> done(result.blocks.size());
-  parallel_for(0, result.blocks.size(), [&](std::size_t i) { done[i] = finisher.finish(result.blocks[i]); });
+  std::vector<Finished> done = finish_blocks(input, result, options, false);
   std::vector<std::string> out;
   out.reserve(done.size());
   for (Finished& f : done) out.push_back(std::move(f.error));
@@ -365,7 +365,7 @@ std::vector<std::string> block_defects_after_rounding(const Mesh& input, const D
 }
 
 FinalizeResult finalize_blocks(const Mesh& input, const DecomposeResult& result, const FinalizeOptions& options) {
-  std::vector<Finished> done = finish_blocks(input, result, options);
+  std::vector<Finished> done = finish_blocks(input, result, options, true);
   FinalizeResult fr;
   for (std::size_t i = 0; i < done.size(); ++i) {
     Finished& f = done[i];
