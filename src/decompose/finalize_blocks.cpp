@@ -145,13 +145,6 @@ class Cleaner {
   double tol_;
 };
 
-//! Scale of the rounding errors of a mesh: max(bbox diagonal, largest |coordinate|).
-double rounding_scale(const Mesh& mesh) {
-  double scale = bounding_box(mesh).diagonal();
-  for (const Vec3& v : mesh.vertices) scale = std::max(scale, v.cwiseAbs().maxCoeff());
-  return scale;
-}
-
 std::string block_name(std::size_t i) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "block %03zu", i);

@@ -124,8 +124,7 @@ std::optional<Union> try_union(const Block& a, const Block& b, const std::vector
   const Vec3 direction = axis_direction(out->axis);
   if (needs_cleanup) {
     const BoundingBox box = bounding_box(out->mesh);
-    double scale = box.diagonal();
-    for (const Vec3& v : out->mesh.vertices) scale = std::max(scale, v.cwiseAbs().maxCoeff());
+    const double scale = rounding_scale(out->mesh);
     FinalizeOptions fo;
     fo.normal_tolerance = height_field_normal_tolerance(o.max_overhang_deg);
     try {

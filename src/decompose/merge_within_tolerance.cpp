@@ -45,9 +45,7 @@ std::optional<Mesh> exact_union(const Mesh& a, const Mesh& b, bool clean, const 
   *moved = 0.0;
   if (!u || rounding.num_degenerate_faces + rounding.num_flipped_faces == 0) return u;
   if (!clean) return std::nullopt;
-  const BoundingBox box = bounding_box(*u);
-  double scale = box.diagonal();
-  for (const Vec3& v : u->vertices) scale = std::max(scale, v.cwiseAbs().maxCoeff());
+  const double scale = rounding_scale(*u);
   const FinalizeOptions fo;
   *moved = fo.relative_tolerance * scale;
   try {
@@ -93,6 +91,31 @@ struct Candidate {
   double bound = 0.0;   // deviation bound measured near it (0 when nothing new sticks out)
 };
 
+//! Why a pair was not merged: one bit per test that rejected one of its
+//! directions (reported per round, to show what limits the merges).
+enum Rejection : unsigned {
+  kLimits = 1u << 0,     // no direction within the limits and the fill screen
+  kUnion = 1u << 1,      // the exact union failed or is not one solid
+  kMilled = 1u << 2,     // the milled shape failed or is not a closed height field
+  kDeviation = 1u << 3,  // the model would leave the tolerance
+  kCollision = 1u << 4,  // the milled shape overlaps another block
+  kDefect = 1u << 5,     // export's check of the merged block failed
+};
+
+//! "limits 3, deviation 12, ...": how many rejected pairs each test rejected.
+std::string rejection_summary(const std::vector<unsigned>& why) {
+  static const std::pair<unsigned, const char*> names[] = {{kLimits, "limits/screen"}, {kUnion, "union"},
+                                                          {kMilled, "milled shape"},   {kDeviation, "deviation"},
+                                                          {kCollision, "collision"},   {kDefect, "export check"}};
+  std::string out;
+  for (const auto& [bit, name] : names) {
+    const auto n = std::count_if(why.begin(), why.end(), [bit](unsigned w) { return (w & bit) != 0; });
+    if (n == 0) continue;
+    out += (out.empty() ? "" : ", ") + std::string(name) + " " + std::to_string(n);
+  }
+  return out;
+}
+
 //! The state the evaluation of a pair reads.
 struct State {
   const std::vector<Block>& blocks;
@@ -102,7 +125,7 @@ struct State {
 };
 
 std::optional<Candidate> evaluate(std::size_t i, std::size_t j, const State& s, const FillDeviationMeter& meter,
-                                  const ToleranceMergeOptions& o, std::size_t& tried) {
+                                  const ToleranceMergeOptions& o, std::size_t& tried, unsigned& why) {
   // Cheap tests first, on the two blocks (the union's box is their boxes'
   // union; the screen casts against both blocks' faces, glued ones included).
   BoundingBox ubox = s.boxes[i];
@@ -127,11 +150,17 @@ std::optional<Candidate> evaluate(std::size_t i, std::size_t j, const State& s, 
   for (Axis axis : order)
     if (detail::within_limits(ubox, axis, o.max_height, o.machine_size) && screen.passes(axis_direction(axis), o.screen_factor * o.tolerance))
       axes.push_back(axis);
-  if (axes.empty()) return std::nullopt;
+  if (axes.empty()) {
+    why |= kLimits;
+    return std::nullopt;
+  }
   double moved = 0.0;
   const std::optional<Mesh> u =
       exact_union(s.blocks[i].mesh, s.blocks[j].mesh, o.clean_rounding, axis_direction(axes.front()), &moved);
-  if (!u) return std::nullopt;
+  if (!u) {
+    why |= kUnion;
+    return std::nullopt;
+  }
   std::vector<const Mesh*> others;
   for (std::size_t k = 0; k < s.blocks.size(); ++k)
     if (k != i && k != j && s.filled[k]) others.push_back(&s.blocks[k].mesh);
@@ -142,18 +171,25 @@ std::optional<Candidate> evaluate(std::size_t i, std::size_t j, const State& s, 
     try {
       milled = milled_shape(*u, d);
     } catch (const std::exception&) {
+      why |= kMilled;
       continue;
     }
     ++tried;
     if (milled.is_block) {
       // A cleaned union is kept only when it is a valid block as export checks it
       // (closed, oriented, no zero-area face, no self-intersection, height field).
-      if (moved > 0 && !block_defect(*u, d, bounding_box(*u).diagonal()).empty()) continue;
-      if (o.block_defect && !o.block_defect(Block{*u, axis, -1}).empty()) continue;
+      if ((moved > 0 && !block_defect(*u, d, bounding_box(*u).diagonal()).empty()) ||
+          (o.block_defect && !o.block_defect(Block{*u, axis, -1}).empty())) {
+        why |= kDefect;
+        continue;
+      }
       return Candidate{*u, axis, s.filled[i] || s.filled[j], 0.0};
     }
     const Mesh& m = milled.mesh;
-    if (!check_closed_solid(m).ok() || !is_height_field(m, d)) continue;
+    if (!check_closed_solid(m).ok() || !is_height_field(m, d)) {
+      why |= kMilled;
+      continue;
+    }
     // The deviation first (it rejects most), then collisions (exact booleans).
     // Where neither block sticks out, the union lies in the solid and only
     // its fill can deviate (measure_fill(), local); else near the whole union.
@@ -161,7 +197,10 @@ std::optional<Candidate> evaluate(std::size_t i, std::size_t j, const State& s, 
     std::optional<std::vector<BoundingBox>> fill;
     if (!s.filled[i] && !s.filled[j]) fill = fill_columns(*u, m, axis);
     const FillDeviation dev = fill ? meter.measure_fill(m, others, *fill, fo) : meter.measure(m, others, fo);
-    if (!dev.failure.empty() || dev.bound() + moved > o.tolerance) continue;
+    if (!dev.failure.empty() || dev.bound() + moved > o.tolerance) {
+      why |= kDeviation;
+      continue;
+    }
     const BoundingBox mbox = bounding_box(m);
     const double volume = signed_volume(m);
     bool collides = false;
@@ -177,8 +216,14 @@ std::optional<Candidate> evaluate(std::size_t i, std::size_t j, const State& s, 
         collides = true;
       }
     }
-    if (collides) continue;
-    if (o.block_defect && !o.block_defect(Block{m, axis, -1}).empty()) continue;
+    if (collides) {
+      why |= kCollision;
+      continue;
+    }
+    if (o.block_defect && !o.block_defect(Block{m, axis, -1}).empty()) {
+      why |= kDefect;
+      continue;
+    }
     return Candidate{m, axis, true, dev.bound() + moved};
   }
   return std::nullopt;
@@ -210,20 +255,25 @@ ToleranceMergeResult merge_within_tolerance(const Mesh& solid, std::vector<Block
     const std::vector<double> volumes = detail::block_volumes(blocks);
     // pairs, smallest smaller block first
     std::vector<std::tuple<double, std::size_t, std::size_t>> order;
+    std::size_t too_large = 0;  // touching pairs over max_pair_faces
     for (std::size_t i = 0; i < blocks.size(); ++i)
       for (std::size_t j = i + 1; j < blocks.size(); ++j)
-        if ((focus[i] || focus[j]) && detail::boxes_touch(boxes[i], boxes[j]) && !rejected.count({ids[i], ids[j]}) &&
-            blocks[i].mesh.num_faces() + blocks[j].mesh.num_faces() <= options.max_pair_faces)
-          order.emplace_back(std::min(volumes[i], volumes[j]), i, j);
+        if ((focus[i] || focus[j]) && detail::boxes_touch(boxes[i], boxes[j]) && !rejected.count({ids[i], ids[j]})) {
+          if (blocks[i].mesh.num_faces() + blocks[j].mesh.num_faces() <= options.max_pair_faces)
+            order.emplace_back(std::min(volumes[i], volumes[j]), i, j);
+          else
+            ++too_large;
+        }
     if (order.empty()) break;
     std::sort(order.begin(), order.end());
     const State state{blocks, filled, boxes, volumes};
     std::vector<std::optional<Candidate>> found(order.size());
     std::vector<std::size_t> tried(order.size(), 0);
+    std::vector<unsigned> why(order.size(), 0);
     std::atomic<std::size_t> done{0};
     parallel_for(0, order.size(), [&](std::size_t p) {
       const auto [v, i, j] = order[p];
-      found[p] = evaluate(i, j, state, meter, options, tried[p]);
+      found[p] = evaluate(i, j, state, meter, options, tried[p], why[p]);
       if (options.progress) options.progress->update(++done, order.size());
     });
     for (std::size_t t : tried) result.num_candidates += t;
@@ -231,10 +281,12 @@ ToleranceMergeResult merge_within_tolerance(const Mesh& solid, std::vector<Block
     std::vector<BoundingBox> changed;
     const double margin = 3.0 * options.tolerance;
     std::size_t merged_now = 0;
+    std::vector<unsigned> rejected_now;
     for (std::size_t p = 0; p < order.size(); ++p) {
       const auto [v, i, j] = order[p];
       if (!found[p]) {
         rejected[{ids[i], ids[j]}] = true;
+        rejected_now.push_back(why[p]);
         continue;
       }
       if (used[i] || used[j]) continue;  // evaluated again next round
@@ -254,7 +306,11 @@ ToleranceMergeResult merge_within_tolerance(const Mesh& solid, std::vector<Block
     }
     if (options.progress)
       options.progress->info("tolerance merge round " + std::to_string(round + 1) + ": " + std::to_string(order.size()) +
-                             " pairs, " + std::to_string(merged_now) + " merged");
+                             " pairs, " + std::to_string(merged_now) + " merged" +
+                             (rejected_now.empty() ? std::string()
+                                                   : "; rejected " + std::to_string(rejected_now.size()) + " (" +
+                                                         rejection_summary(rejected_now) + ")") +
+                             (too_large ? "; " + std::to_string(too_large) + " pairs over the face cap" : ""));
     if (merged_now == 0) break;
     result.num_merges += merged_now;
     std::vector<Block> kept;

@@ -421,8 +421,7 @@ SinglePrecisionCleanup clean_single_precision(Mesh& machine, Mesh& block, const 
   if (r.ok) return r;
   // Clusters of vertices closer than a few float spacings: collapse their
   // edges first (in double), then round again; kept when that gives a solid.
-  double magnitude = 0;
-  for (const Vec3& v : machine_before.vertices) magnitude = std::max(magnitude, v.cwiseAbs().maxCoeff());
+  const double magnitude = largest_coordinate(machine_before);
   const double spacing = magnitude * std::ldexp(1.0, -23);  // float32's spacing at the largest coordinate (upper bound)
   SinglePrecisionCleanup again;
   Mesh machine2 = machine_before, block2 = block_before;

@@ -19,6 +19,14 @@ BoundingBox bounding_box(const Mesh& mesh, bool referenced_only) {
   return box;
 }
 
+double largest_coordinate(const Mesh& mesh) {
+  double largest = 0.0;
+  for (const Vec3& v : mesh.vertices) largest = std::max(largest, v.cwiseAbs().maxCoeff());
+  return largest;
+}
+
+double rounding_scale(const Mesh& mesh) { return std::max(bounding_box(mesh).diagonal(), largest_coordinate(mesh)); }
+
 Vec3 face_normal_scaled(const Mesh& mesh, std::size_t f) {
   const auto& t = mesh.faces[f];
   const Vec3& a = mesh.vertices[static_cast<std::size_t>(t[0])];

@@ -13,12 +13,6 @@
 namespace subfab {
 namespace {
 
-double largest_coordinate(const Mesh& mesh) {
-  double m = 0.0;
-  for (const Vec3& v : mesh.vertices) m = std::max(m, v.cwiseAbs().maxCoeff());
-  return m;
-}
-
 //! Max |exported vertex - back x frame vertex|, or why the frame block does not match.
 struct BlockMatch {
   double offset = 0.0;
@@ -91,7 +85,7 @@ FrameMatch match_frame_blocks(const Mesh& input, const std::vector<const Mesh*>&
     largest = std::max(largest, turned.cwiseAbs().maxCoeff());
   }
   const double max_offset =
-      options.max_vertex_offset * std::max(bounding_box(input).diagonal(), largest_coordinate(input));
+      options.max_vertex_offset * rounding_scale(input);
   std::vector<BlockMatch> r(blocks.size());
   parallel_for(0, blocks.size(), [&](std::size_t i) {
     if (i >= frame_blocks.size() || !frame_blocks[i]) {

@@ -71,9 +71,8 @@ double overlap_volume_bound(const Mesh& a, const Mesh& b, const Eigen::Matrix3d&
   if (a.vertices.empty() || b.vertices.empty()) return 0.0;
   if ((frame.transpose() * frame - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-9) return kInf;
   const double det = std::abs(frame.determinant());
-  double largest = 0.0;  // largest |coordinate|, for the rounding margin of the dot products
-  for (const Mesh* m : {&a, &b})
-    for (const Vec3& v : m->vertices) largest = std::max(largest, v.cwiseAbs().maxCoeff());
+  // largest |coordinate|, for the rounding margin of the dot products
+  const double largest = std::max(largest_coordinate(a), largest_coordinate(b));
   double bound = 1.0;
   for (int k = 0; k < 3; ++k) {
     const Vec3 u = frame.row(k).transpose();

@@ -49,6 +49,14 @@ struct BoundingBox {
 //! `referenced_only` is false).
 BoundingBox bounding_box(const Mesh& mesh, bool referenced_only = true);
 
+//! Largest |coordinate| over all vertices (0 for none): the magnitude that
+//! bounds the rounding error of arithmetic on the coordinates.
+double largest_coordinate(const Mesh& mesh);
+
+//! Scale of a mesh's rounding errors: max(bounding-box diagonal, largest
+//! |coordinate|). Tolerances "relative to the model" multiply it.
+double rounding_scale(const Mesh& mesh);
+
 //! Unnormalised normal of face f: (b - a) x (c - a); its length is twice the area.
 Vec3 face_normal_scaled(const Mesh& mesh, std::size_t f);
 
