@@ -133,6 +133,8 @@ struct HexMeshResult {
   //! surface, without the chordal error of the quads between them (the
   //! quantity a vertex-based distance such as Table D.1's can only see).
   double mean_vertex_distance = 0, max_vertex_distance = 0;
+  std::size_t boundary_vertices = 0;     // vertices of the boundary quads
+  std::size_t vertices_off_surface = 0;  // boundary vertices farther than 1e-6 of the diagonal from the input
   OptimizeHexMeshReport optimize;
   RaiseMinScaledJacobianReport raise;
   PullBoundaryReport pull;
