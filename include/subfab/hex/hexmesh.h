@@ -31,9 +31,11 @@
 //!   7. raise_min_scaled_jacobian() on the final level: local optimisation of
 //!      the worst elements, boundary sliding on the surface; elements still
 //!      inverted are untangled jointly, their boundary free near the surface;
-//!   7b. pull_boundary_to_surface(), then raise_worst_scaled_jacobian(): the
-//!      patches around the hexahedra under 0.5 optimised jointly (soft
-//!      minimum, boundary sliding), the minimum never lowered;
+//!   7b. raise_worst_scaled_jacobian(): the patches around the hexahedra
+//!      under 0.5 optimised jointly (soft minimum, boundary sliding), the
+//!      minimum never lowered; then pull_boundary_to_surface(): boundary
+//!      vertices left off the surface put on it, each with its neighbourhood
+//!      re-optimised, where no patch falls under the mesh's minimum;
 //!   7c. raise_mean_scaled_jacobian(): the average up (a smooth soft-min
 //!      energy over every hexahedron), no hexahedron under min(its value,
 //!      0.5), boundary sliding on the surface;

@@ -18,6 +18,26 @@
 //! so the mesh's minimum never drops and no neighbourhood loses more than
 //! `max_loss` of its worst element. Stops after `sweeps` sweeps or when a
 //! sweep moves nothing.
+//!
+//! Second stage (`rings` > 0; issue 14, thesis D.6 keeps every boundary
+//! vertex on the surface): most vertices left are held because their
+//! padding hexahedron would flatten if the vertex moved alone (on the seven
+//! bench models, 11 to 312 of them, up to two mean edges off the surface).
+//! In `snap_sweeps` sweeps in index order, each such vertex (or cluster of
+//! up to `max_cluster` held vertices connected along boundary edges) moves
+//! to its closest point on the surface in `patch_stages` equal steps; its
+//! inner neighbours (the other ends of its padding edges) are carried by the
+//! same step, so no padding edge turns over (a gradient step cannot undo
+//! that: the normalised corner jumps through 0); after each step the patch
+//! (the vertex and `rings` rings of edge neighbours; the vertex fixed, its
+//! boundary neighbours sliding on the surface, the inner ones free) takes up
+//! to `patch_steps` steps of raise_worst_scaled_jacobian()'s joint ascent
+//! on the soft minimum of its corners, when its worst hexahedron is under
+//!     need = min(its worst before, max(patch_floor, mesh minimum before)).
+//! At the last step the vertex slides with its patch. The last step whose
+//! patch is >= need is kept (all the way: `snapped`; part of it: `closer`);
+//! none: the patch is back where it was. So the mesh's minimum never drops.
+//! Serial, fixed order: deterministic.
 #pragma once
 
 #include <cstddef>
