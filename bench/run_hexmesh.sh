@@ -25,6 +25,7 @@ print(f"{name}: exit {code}, wall {float(end) - float(start):.1f} s, tris {j['in
       f"SJ avg/min {sj['avg']:.3f}/{sj['min']:.4f}, inverted {j['inverted']}, "
       f"mean/max dist {j['mean_distance_fraction']:.2e}/{j['max_distance_fraction']:.2e}, "
       f"vertices mean/max {j['mean_vertex_distance_fraction']:.2e}/{j['max_vertex_distance_fraction']:.2e}, "
+      f"off {j.get('vertices_off_surface', '?')}/{j.get('boundary_vertices', '?')}, "
       f"total {j['seconds_total']:.1f} s, optimise {j['seconds']['subdivide + project + optimise']:.1f} s", end="")
 rc = j.get("resolution_control")
 if isinstance(rc, dict) and rc.get("enabled"):

@@ -119,7 +119,11 @@ nlohmann::ordered_json to_json(const HexmeshArgs& args, const Mesh& input, const
                         {"max_off_before_fraction", r.diagonal > 0 ? r.pull.max_off_before / r.diagonal : 0.0},
                         {"max_off_after_fraction", r.diagonal > 0 ? r.pull.max_off_after / r.diagonal : 0.0},
                         {"moves", r.pull.moves},
-                        {"sweeps", r.pull.sweeps}};
+                        {"sweeps", r.pull.sweeps},
+                        {"held", r.pull.held},
+                        {"snapped", r.pull.snapped},
+                        {"closer", r.pull.closer},
+                        {"snap_steps", r.pull.snap_steps}};
   j["worst_pass"] = {{"min_before", r.worst.min_before},
                      {"avg_before", r.worst.avg_before},
                      {"targets_before", r.worst.targets_before},
@@ -139,6 +143,8 @@ nlohmann::ordered_json to_json(const HexmeshArgs& args, const Mesh& input, const
   j["max_distance_fraction"] = r.diagonal > 0 ? r.max_distance / r.diagonal : 0.0;
   j["mean_vertex_distance_fraction"] = r.diagonal > 0 ? r.mean_vertex_distance / r.diagonal : 0.0;
   j["max_vertex_distance_fraction"] = r.diagonal > 0 ? r.max_vertex_distance / r.diagonal : 0.0;
+  j["boundary_vertices"] = r.boundary_vertices;
+  j["vertices_off_surface"] = r.vertices_off_surface;  // boundary vertices over 1e-6 of the diagonal from the input
   nlohmann::ordered_json t;
   double total = 0;
   for (const auto& [name, s] : timings) t[name] = s, total += s;

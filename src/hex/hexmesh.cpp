@@ -294,16 +294,19 @@ HexMeshResult hexmesh_once(const Mesh& surface, const Skeleton* skeleton, const 
     r.raise = detail::raise_min_scaled_jacobian(mesh, projector, options.raise);
   }
   timer.lap("raise worst elements");
-  if (options.pull_boundary) {
-    StageScope stage(progress, "pull boundary to surface");
-    r.pull = detail::pull_boundary_to_surface(mesh, projector, options.pull);
-  }
-  timer.lap("pull boundary");
+  // the worst elements first, then the boundary onto the surface where the
+  // patch's worst element stays over the mesh's minimum (so that minimum is
+  // kept), then the average
   if (options.raise_worst) {
     StageScope stage(progress, "raise worst elements jointly");
     r.worst = detail::raise_worst_scaled_jacobian(mesh, projector, options.worst);
   }
   timer.lap("raise worst jointly");
+  if (options.pull_boundary) {
+    StageScope stage(progress, "pull boundary to surface");
+    r.pull = detail::pull_boundary_to_surface(mesh, projector, options.pull);
+  }
+  timer.lap("pull boundary");
   if (options.raise_mean) {
     StageScope stage(progress, "raise average quality");
     RaiseMeanScaledJacobianOptions mo = options.mean;
@@ -363,6 +366,8 @@ HexMeshResult hexmesh_once(const Mesh& surface, const Skeleton* skeleton, const 
     parallel_for(0, boundary.vertices.size(), [&](std::size_t v) { at_vertex[v] = to_input(boundary.vertices[v]); }, 256);
     double vertex_sum = 0;
     for (double d : at_vertex) vertex_sum += d, r.max_vertex_distance = std::max(r.max_vertex_distance, d);
+    r.boundary_vertices = at_vertex.size();
+    for (double d : at_vertex) r.vertices_off_surface += d > 1e-6 * r.diagonal;
     r.mean_vertex_distance = at_vertex.empty() ? 0.0 : vertex_sum / static_cast<double>(at_vertex.size());
   }
   timer.lap("measure");

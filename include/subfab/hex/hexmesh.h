@@ -31,9 +31,11 @@
 //!   7. raise_min_scaled_jacobian() on the final level: local optimisation of
 //!      the worst elements, boundary sliding on the surface; elements still
 //!      inverted are untangled jointly, their boundary free near the surface;
-//!   7b. pull_boundary_to_surface(), then raise_worst_scaled_jacobian(): the
-//!      patches around the hexahedra under 0.5 optimised jointly (soft
-//!      minimum, boundary sliding), the minimum never lowered;
+//!   7b. raise_worst_scaled_jacobian(): the patches around the hexahedra
+//!      under 0.5 optimised jointly (soft minimum, boundary sliding), the
+//!      minimum never lowered; then pull_boundary_to_surface(): boundary
+//!      vertices left off the surface put on it, each with its neighbourhood
+//!      re-optimised, where no patch falls under the mesh's minimum;
 //!   7c. raise_mean_scaled_jacobian(): the average up (a smooth soft-min
 //!      energy over every hexahedron), no hexahedron under min(its value,
 //!      0.5), boundary sliding on the surface;
@@ -133,6 +135,8 @@ struct HexMeshResult {
   //! surface, without the chordal error of the quads between them (the
   //! quantity a vertex-based distance such as Table D.1's can only see).
   double mean_vertex_distance = 0, max_vertex_distance = 0;
+  std::size_t boundary_vertices = 0;     // vertices of the boundary quads
+  std::size_t vertices_off_surface = 0;  // boundary vertices farther than 1e-6 of the diagonal from the input
   OptimizeHexMeshReport optimize;
   RaiseMinScaledJacobianReport raise;
   PullBoundaryReport pull;
