@@ -169,6 +169,65 @@ TEST(RemoveSlivers, ASliverNeitherMergeNorDropKeepsWithinTheLimitsIsKeptAndCount
   EXPECT_EQ(r.blocks.size(), 2u);
 }
 
+//! An L-shaped sliver (regression, fertility.off at --tolerance 1e-3,
+//! 2026-12-05: block 020, a sheet 0.44 T thick with a thick lump at one
+//! end). The model is the box [0, 10]^2 x [0, 7.9]; the blocks, each a
+//! prism over y in [0, 10] (x, z profiles):
+//!   A  [0, 10] x [0, 3.8], +z;
+//!   S  the sheet [0, 10] x [3.8, 4.1] with the lump [0, 1] x [4.1, 5.8]
+//!      on it, +z (mean chord along z 0.47 < 0.5: a sliver);
+//!   B1 [1, 10] x [4.1, 7.9] and B2 [0, 1] x [5.8, 7.9], -z.
+std::pair<Mesh, std::vector<Block>> sheet_with_lump() {
+  Mesh s = test::extrude_polygon({{0, 3.8}, {10, 3.8}, {10, 4.1}, {1, 4.1}, {1, 5.8}, {0, 5.8}},
+                                 {{0, 1, 2}, {0, 2, 3}, {0, 3, 5}, {3, 4, 5}}, 0, 10);
+  for (Vec3& v : s.vertices) v = Vec3(v.x(), v.z(), v.y());  // (x, z, y) -> (x, y, z): a reflection
+  return {box_solid({0, 0, 0}, {10, 10, 7.9}),
+          {Block{box_solid({0, 0, 0}, {10, 10, 3.8}), Axis::PosZ, 0}, Block{test::flipped(s), Axis::PosZ, 1},
+           Block{box_solid({1, 0, 4.1}, {10, 10, 7.9}), Axis::NegZ, 2},
+           Block{box_solid({0, 0, 5.8}, {1, 10, 7.9}), Axis::NegZ, 3}}};
+}
+
+TEST(RemoveSlivers, ASliverWithAThickLumpIsSplitAndItsSheetDropped) {
+  // Regression (fertility.off at --tolerance 1e-3, block 020). A height
+  // limit of 3.9 forbids every union with S (extents 4.2 and more), and
+  // dropping S uncovers the model's side along the lump (0.8 from A, B1
+  // and B2): the drop and the merges leave S. Split across the plane of
+  // its largest inner face (z = 4.1), its sheet [0, 10] x [3.8, 4.1] is
+  // dropped (the model's sides stay within 0.15 of A, B1 and the lump) and
+  // the lump [0, 1] x [4.1, 5.8] (1 thick) is no sliver: 4 blocks, none thin.
+  auto [solid, blocks] = sheet_with_lump();
+  ASSERT_TRUE(check_closed_solid(blocks[1].mesh).ok());
+  ASSERT_NEAR(signed_volume(blocks[1].mesh), 30.0 + 17.0, 1e-9);
+  SliverRemovalOptions o;
+  o.tolerance = 0.5;
+  o.min_thickness = 0.5;
+  o.max_height = 3.9;
+  o.max_split_planes = 0;  // the stages before the split: S is left
+  const SliverRemovalResult before = remove_slivers(solid, blocks, o);
+  EXPECT_EQ(before.num_found, 1u);
+  EXPECT_EQ(before.num_left, 1u);
+  EXPECT_EQ(before.blocks.size(), 4u);
+  o.max_split_planes = SliverRemovalOptions{}.max_split_planes;
+  const SliverRemovalResult r = remove_slivers(solid, blocks, o);
+  EXPECT_EQ(r.num_found, 1u);
+  EXPECT_EQ(r.num_split, 1u);
+  EXPECT_EQ(r.num_dropped, 1u);
+  EXPECT_EQ(r.num_merged, 0u);
+  EXPECT_EQ(r.num_left, 0u);
+  ASSERT_EQ(r.blocks.size(), 4u);
+  const Block& lump = r.blocks[1];  // the pieces take the sliver's place
+  EXPECT_EQ(lump.axis, Axis::PosZ);
+  EXPECT_TRUE(check_closed_solid(lump.mesh).ok());
+  EXPECT_TRUE(is_height_field(lump.mesh, axis_direction(lump.axis)));
+  EXPECT_NEAR(signed_volume(lump.mesh), 17.0, 1e-9);
+  const BoundingBox box = bounding_box(lump.mesh);
+  EXPECT_EQ(box.min, Vec3(0, 0, 4.1));
+  EXPECT_EQ(box.max, Vec3(1, 10, 5.8));
+  EXPECT_GE(r.max_deviation, 0.15 - 1e-12);
+  EXPECT_LE(r.max_deviation, 0.15 + 0.05 * 0.5 + 1e-9);
+  for (std::size_t i : {0u, 2u, 3u}) EXPECT_EQ(r.blocks[i].mesh.vertices, blocks[i].mesh.vertices);
+}
+
 TEST(RemoveSlivers, AThinBlockWhereTheModelIsThinIsNoSliver) {
   // A plate 0.3 thick cut in two: each half is as thin as the model.
   const Mesh plate = box_solid({0, 0, 0}, {10, 10, 0.3});
