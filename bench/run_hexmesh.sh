@@ -5,6 +5,7 @@
 set -e
 out=${1:-/tmp/hexbench}
 shift 2>/dev/null || true
+mkdir -p "$out"
 models=${*:-"cactus.off fertility.off humanoid.off bob.obj spot.obj rocker_arm.obj elephant.obj"}
 for m in $models; do
   name=${m%.*}
