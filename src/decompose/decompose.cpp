@@ -132,8 +132,11 @@ Mesh repaired_in_input_frame(const Mesh& input, const Mesh& canonical, const Mes
 //! `allowed` (per face of `solid`, with their base floors; nullptr: none).
 //! Sets result.canonical to
 //! the refined solid and adds the stages' statistics and times to `result`.
+//! `input_spacing`: the field grid keeps the input's spacing (as after a
+//! repair) although `solid` is a part of it with other edges (a carved
+//! piece: its cut faces have long edges).
 std::vector<Block> carve_stages(const Mesh& solid, const OverhangAllowances* allowances, const Mesh& input,
-                                const DecomposeOptions& options, DecomposeResult& result) {
+                                const DecomposeOptions& options, DecomposeResult& result, bool input_spacing = false) {
   Progress* progress = options.progress;
   const double overhang = options.max_overhang_deg;
   const Vec3 machine = options.machine ? *options.machine : Vec3::Constant(std::numeric_limits<double>::infinity());
@@ -147,7 +150,7 @@ std::vector<Block> carve_stages(const Mesh& solid, const OverhangAllowances* all
     const auto t = Clock::now();
     FieldOptions o;
     o.grid_factor = options.grid_factor;
-    if (result.repaired_input)  // the grid keeps the input's spacing (the repair adds small faces)
+    if (result.repaired_input || input_spacing)  // the grid keeps the input's spacing (the repair adds small faces)
       o.grid_factor *= average_edge_length(input) / average_edge_length(solid);
     o.max_height = result.max_height;
     o.max_overhang_deg = overhang;
@@ -441,15 +444,161 @@ std::vector<std::array<double, 3>> depths_within(const Mesh& solid, const Decomp
 //! The milled shapes of `blocks`, measured within result.tolerance
 //! (mill_within_tolerance()), timed as "tolerance".
 MillToleranceResult mill_stage(const Mesh& solid, std::vector<Block> blocks, const DecomposeOptions& options,
-                               DecomposeResult& result) {
+                               DecomposeResult& result, const std::vector<char>* measure = nullptr,
+                               const std::vector<double>* known_deviation = nullptr) {
   StageScope stage(options.progress, "mill");
   const auto t = Clock::now();
   MillToleranceOptions mo;
   mo.tolerance = result.tolerance;
+  mo.measure = measure;
+  mo.known_deviation = known_deviation;
   mo.progress = options.progress;
   MillToleranceResult milled = mill_within_tolerance(solid, std::move(blocks), mo);
   result.timings.tolerance += seconds_since(t);
   return milled;
+}
+
+//! The end of stages_within_tolerance() when its last round under
+//! allowances still leaves blocks beyond the tolerance (issue 17): instead
+//! of decomposing the whole model again without allowances, only the
+//! failing blocks are decomposed again, each on its own carved piece: first
+//! under the piece's own allowances at the smallest depth fraction (stages
+//! 2-6 on the piece alone, its undercut depths measured in it: a deeper or
+//! no allowance where a neighbour lies under a face, never a larger one),
+//! and where a block of that fails too, exactly (no allowances: exact
+//! height fields inside the piece, which add no material and collide with
+//! nothing). The other blocks are kept milled. After each pass the blocks
+//! are milled and measured again, the deviation only of the blocks within
+//! reach of a change (without a neighbour's fill, the faces a fill had
+//! against it lie on the model's surface; the measure of a block reads the
+//! input faces within T of its box and the blocks within T of those, so a
+//! block whose box widened by 2 T + twice the longest edge of `solid`
+//! misses every changed box keeps its measure). Each pass takes at least
+//! one block a level further (round, piece within T, exact), so it ends.
+//! `carved`: the round's carved pieces, `milled`: their measure. Sets
+//! `blocks`, `filled` and result.num_blocks_made_exact (the round's blocks
+//! replaced). Returns false, changing nothing in `blocks`, when a piece is
+//! not a closed 2-manifold, holds a crease or spike no exact block covers,
+//! or its exact decomposition fails: the caller then takes the exact path.
+bool replace_failed_blocks(const Mesh& solid, const std::vector<Block>& round_carved,
+                           const MillToleranceResult& round_milled, const Mesh& input, const DecomposeOptions& options,
+                           DecomposeResult& result, std::vector<Block>& blocks, std::vector<char>& filled) {
+  Progress* progress = options.progress;
+  std::vector<Block> carved = round_carved;
+  MillToleranceResult milled = round_milled;
+  std::vector<int> level(carved.size(), 0);  // 0: the round's piece, 1: a piece's block within T, 2: exact
+  std::size_t replaced = 0;
+  DecomposeOptions quiet = options;
+  quiet.progress = nullptr;
+  double longest_edge = 0;
+  for (const auto& f : solid.faces)
+    for (int k = 0; k < 3; ++k)
+      longest_edge = std::max(longest_edge, (solid.vertices[static_cast<std::size_t>(f[k])] -
+                                             solid.vertices[static_cast<std::size_t>(f[(k + 1) % 3])]).norm());
+  const double margin = 2 * result.tolerance + 2 * longest_edge;
+  const std::vector<double>& fractions = options.tolerance_depth_fractions;
+  while (milled.num_failed() > 0) {
+    std::vector<Block> next;
+    std::vector<int> next_level;
+    std::vector<char> is_new;
+    std::vector<double> known;
+    std::vector<BoundingBox> changed;  // boxes of the milled shapes replaced (the new blocks lie inside them)
+    for (std::size_t i = 0; i < carved.size(); ++i) {
+      if (milled.failures[i].empty()) {
+        next.push_back(std::move(carved[i]));
+        next_level.push_back(level[i]);
+        is_new.push_back(0);
+        known.push_back(milled.deviation[i]);
+        continue;
+      }
+      // The carved piece as a solid of its own: rounding to doubles leaves
+      // caps and zero-area faces (export cleans them the same way), which
+      // the stages' exact booleans must not be given.
+      Mesh piece = carved[i].mesh;
+      std::string why;
+      if (level[i] >= 2) why = "an exact block failed the measure";  // never: exact blocks add nothing
+      try {
+        if (why.empty()) {
+          clean_rounded_block(piece, axis_direction(carved[i].axis), FinalizeOptions{}.relative_tolerance * rounding_scale(solid));
+          require_closed_solid_result(piece, "its carved piece is not a clean solid: ");
+        }
+      } catch (const std::exception& e) {
+        why = e.what();
+      }
+      if (why.empty() && !find_infeasible_features(piece).feasible())
+        why = "its carved piece holds a crease or spike no exact block covers";
+      std::vector<Block> parts;
+      int part_level = 2;
+      if (why.empty()) {
+        DecomposeResult sub;
+        sub.max_height = result.max_height;
+        sub.max_overhang_deg = result.max_overhang_deg;
+        sub.tolerance = result.tolerance;
+        try {
+          OverhangAllowances allowed;
+          if (level[i] == 0) {
+            const std::vector<std::array<std::uint8_t, 3>> smallest(
+                piece.num_faces(), std::array<std::uint8_t, 3>{static_cast<std::uint8_t>(fractions.size() - 1),
+                                                               static_cast<std::uint8_t>(fractions.size() - 1),
+                                                               static_cast<std::uint8_t>(fractions.size() - 1)});
+            allowed = allowances_with_floors(piece, depths_within(piece, options, sub), smallest, fractions,
+                                             result.tolerance, options.tolerance_floor_scale);
+          }
+          part_level = count_allowed_faces(allowed.bits) > 0 ? 1 : 2;
+          parts = carve_stages(piece, part_level == 1 ? &allowed : nullptr, input, quiet, sub, /*input_spacing=*/true);
+        } catch (const AlgorithmError& e) {
+          why = std::string("its decomposition failed: ") + e.what();
+        }
+        DecomposeTimings& t = result.timings;
+        t.field += sub.timings.field;
+        t.grow += sub.timings.grow;
+        t.cover += sub.timings.cover;
+        t.resolve += sub.timings.resolve;
+        t.carve += sub.timings.carve;
+      }
+      if (!why.empty()) {
+        if (progress)
+          progress->info("block " + std::to_string(i + 1) + " beyond the tolerance cannot be decomposed again in "
+                         "place (" + why + "): decomposing the whole model again");
+        return false;
+      }
+      if (progress)
+        progress->info("block " + std::to_string(i + 1) + " beyond the tolerance (" + milled.failures[i] +
+                       ") replaced by the " + std::to_string(parts.size()) + " block(s) of its carved piece " +
+                       (part_level == 1 ? "within the tolerance" : "exactly"));
+      if (level[i] == 0) ++replaced;
+      changed.push_back(bounding_box(milled.blocks[i].mesh));
+      for (Block& b : parts) {
+        next.push_back(std::move(b));
+        next_level.push_back(part_level);
+        is_new.push_back(1);
+        known.push_back(0.0);
+      }
+    }
+    // which kept blocks' measures can have changed: boxes from the milled shapes of the last pass
+    std::vector<BoundingBox> old_boxes;
+    for (std::size_t i = 0; i < carved.size(); ++i)
+      if (milled.failures[i].empty()) old_boxes.push_back(bounding_box(milled.blocks[i].mesh));
+    std::vector<char> measure(next.size(), 1);
+    for (std::size_t k = 0, kept = 0; k < next.size(); ++k) {
+      if (is_new[k]) continue;
+      BoundingBox reach = old_boxes[kept++];
+      reach.min -= Vec3::Constant(margin);
+      reach.max += Vec3::Constant(margin);
+      measure[k] = std::any_of(changed.begin(), changed.end(),
+                               [&](const BoundingBox& c) { return detail::boxes_touch(reach, c); })
+                       ? 1
+                       : 0;
+    }
+    carved = next;  // the pieces again: mill_stage() makes the milled shapes from them
+    level = std::move(next_level);
+    milled = mill_stage(solid, std::move(next), options, result, &measure, &known);
+  }
+  blocks = std::move(milled.blocks);
+  filled = std::move(milled.filled);
+  result.deviation_bound = milled.max_deviation;
+  result.num_blocks_made_exact = replaced;
+  return true;
 }
 
 //! Stages 2-6 of decompose() within a tolerance (issue 17) on `solid`:
@@ -497,6 +646,9 @@ bool stages_within_tolerance(const Mesh& solid, const std::vector<std::array<dou
                             " blocks, at least " + std::to_string(carve_limit));
     if (num_allowed == 0) return true;
     ++result.num_tolerance_rounds;
+    const bool last_round = round + 1 >= options.tolerance_rounds;
+    std::vector<Block> carved;  // the last round's pieces, for replace_failed_blocks()
+    if (last_round && options.tolerance_local_exact) carved = blocks;
     MillToleranceResult milled = mill_stage(solid, std::move(blocks), options, result);
     if (milled.num_failed() == 0) {
       blocks = std::move(milled.blocks);
@@ -504,9 +656,15 @@ bool stages_within_tolerance(const Mesh& solid, const std::vector<std::array<dou
       result.deviation_bound = milled.max_deviation;
       return true;
     }
+    if (last_round && options.tolerance_local_exact) {
+      if (progress)
+        progress->info(std::to_string(milled.num_failed()) + " block(s) beyond the tolerance after " +
+                       std::to_string(round + 1) + " round(s): replacing them by exact blocks of their pieces");
+      if (replace_failed_blocks(solid, carved, milled, input, options, result, blocks, filled)) return true;
+    }
     if (allowed == last) return false;  // nothing left to lower
     const OverhangAllowances before = allowed;
-    if (round + 1 >= options.tolerance_rounds) {
+    if (last_round) {
       allowed = last;
     } else {
       const OverhangAllowances previous = allowed;

@@ -42,6 +42,9 @@ MillToleranceResult mill_within_tolerance(const Mesh& solid, std::vector<Block> 
     throw InvalidArgumentError("mill_within_tolerance: error_fraction must be in (0, 1)");
   Progress* progress = options.progress;
   const std::size_t n = blocks.size();
+  if (options.measure && (options.measure->size() != n || !options.known_deviation ||
+                          options.known_deviation->size() != n))
+    throw InvalidArgumentError("mill_within_tolerance: measure and known_deviation must have one entry per block");
   MillToleranceResult r;
   r.filled.assign(n, 0);
   r.failures.assign(n, std::string());
@@ -113,8 +116,13 @@ MillToleranceResult mill_within_tolerance(const Mesh& solid, std::vector<Block> 
   std::vector<const Mesh*> measured_blocks;
   std::vector<std::optional<std::vector<BoundingBox>>> measured_fills;
   std::size_t num_regions = 0;
+  std::vector<char> known(n, 0);  // filled, passing, and its deviation known (options.measure)
   for (std::size_t i = 0; i < n; ++i) {
     if (!r.filled[i] || !r.failures[i].empty()) continue;
+    if (options.measure && !(*options.measure)[i]) {
+      known[i] = 1;
+      continue;
+    }
     measured_ids.push_back(i);
     measured_blocks.push_back(&blocks[i].mesh);
     measured_fills.push_back(std::move(fill[i]));
@@ -122,7 +130,10 @@ MillToleranceResult mill_within_tolerance(const Mesh& solid, std::vector<Block> 
   }
   if (progress)
     progress->info("measuring the deviation in " + std::to_string(num_regions) + " region(s) of " +
-                   std::to_string(all_filled.size()) + " filled block(s)");
+                   std::to_string(all_filled.size()) + " filled block(s)" +
+                   (options.measure ? " (" + std::to_string(std::count(known.begin(), known.end(), char{1})) +
+                                          " known from before: nothing near them changed)"
+                                    : std::string()));
   const std::vector<FillDeviation> measured =
       measure_fills(meter, measured_blocks, measured_fills, all_filled, fo, [&](std::size_t d, std::size_t total) {
         if (progress) progress->update(n + (n * d) / std::max<std::size_t>(total, 1), 2 * n);
@@ -130,7 +141,9 @@ MillToleranceResult mill_within_tolerance(const Mesh& solid, std::vector<Block> 
   std::vector<FillDeviation> deviation(n);
   for (std::size_t k = 0; k < measured_ids.size(); ++k) deviation[measured_ids[k]] = measured[k];
   for (std::size_t i = 0; i < n; ++i) {
-    if (r.filled[i] && r.failures[i].empty()) {
+    if (known[i]) {
+      r.deviation[i] = (*options.known_deviation)[i];
+    } else if (r.filled[i] && r.failures[i].empty()) {
       const FillDeviation& dev = deviation[i];
       if (!dev.failure.empty())
         r.failures[i] = "its deviation could not be measured: " + dev.failure;

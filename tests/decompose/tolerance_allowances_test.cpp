@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -150,6 +151,58 @@ TEST(ToleranceAllowances, AnAllowanceTheMeasureRefutesIsLoweredAndTheResultStays
   for (const Block& b : t.blocks) EXPECT_TRUE(is_height_field(b.mesh, axis_direction(b.axis)));
 }
 
+
+//! Two 10 x 10 x 10 boxes with a groove round their four sides at z in
+//! [4, 6], 1 deep in the first (x in [0, 10]) and 2 deep in the second (x in
+//! [14, 24]), joined by a bar (x in [10, 14], y in [4, 6], z in [0, 1]).
+//! In a 13 x 13 x 13 work volume no block holds both boxes.
+std::set<test::Cell> two_grooved_boxes_cells() {
+  std::set<test::Cell> cells;
+  for (int b = 0; b < 2; ++b) {
+    const int x0 = 14 * b, depth = 1 + b;
+    for (const auto& c : test::cells_of_box({x0, 0, 0}, {x0 + 10, 10, 10})) {
+      const int x = c[0] - x0;
+      const bool groove = (c[2] == 4 || c[2] == 5) &&
+                          (x < depth || x >= 10 - depth || c[1] < depth || c[1] >= 10 - depth);
+      if (!groove) cells.insert(c);
+    }
+  }
+  for (const auto& c : test::cells_of_box({10, 4, 0}, {14, 6, 1})) cells.insert(c);
+  return cells;
+}
+
+TEST(ToleranceAllowances, BlocksStillBeyondTheToleranceAfterTheLastRoundAreMadeExactInPlace) {
+  // T = 1.5, one round, both grooves' ceilings allowed (fraction 4): the
+  // first box's milled shape deviates 1 <= T and is kept (one block), the
+  // second's deviates 2 > T and no round is left. Only that block's carved
+  // piece is replaced by its exact blocks, every block an exact height
+  // field, the deviation within T; decomposing the whole model again
+  // instead (tolerance_local_exact = false: the exact path, then the merges
+  // within T) gives no fewer blocks.
+  const Mesh boxes = voxel_mesh(two_grooved_boxes_cells());
+  DecomposeOptions within;
+  within.orient = false;
+  within.machine = Vec3(13, 13, 13);
+  within.tolerance_abs = 1.5;
+  within.tolerance_fraction = 1.0;
+  within.tolerance_depth_fractions = {4.0};
+  within.tolerance_rounds = 1;
+  within.tolerance_floor_scale = 0;
+  const DecomposeResult t = decompose(boxes, within);
+  EXPECT_EQ(t.num_tolerance_rounds, 1);
+  EXPECT_EQ(t.num_blocks_made_exact, 1u);
+  EXPECT_LE(t.deviation_bound, 1.5);
+  ASSERT_EQ(t.filled.size(), t.blocks.size());
+  EXPECT_EQ(std::count(t.filled.begin(), t.filled.end(), char{1}), 1);  // the first box, its groove filled
+  for (const Block& b : t.blocks) {
+    EXPECT_TRUE(check_closed_solid(b.mesh).ok());
+    EXPECT_TRUE(is_height_field(b.mesh, axis_direction(b.axis)));
+  }
+  within.tolerance_local_exact = false;
+  const DecomposeResult g = decompose(boxes, within);
+  EXPECT_EQ(g.num_blocks_made_exact, 0u);
+  EXPECT_LE(t.blocks.size(), g.blocks.size());  // 4 and 4: the merges within T make the first box one block there
+}
 
 //! A 10 x 10 plate (z in [0, 1]), a 4 x 4 core (z in [1, 8]) and a 10 x 10
 //! slab (z in [8, 12]) whose rim hangs 1 lower (a lip: the outer ring of

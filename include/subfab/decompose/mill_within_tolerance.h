@@ -40,6 +40,10 @@ struct MillToleranceOptions {
   double collision_tolerance = 1e-6; // overlap volume allowed, fraction of the smaller block (validate's)
   std::size_t max_region_faces = 0;  // > 0: a block whose deviation measure would span more input faces fails
                                      // ("region too large"); 0 = no cap
+  const std::vector<char>* measure = nullptr;  // per block: 0 = its deviation is known (known_deviation) and
+                                     // nothing within its measure's reach changed since: not measured again (its
+                                     // milled shape is still made and checked for collisions); nullptr = all measured
+  const std::vector<double>* known_deviation = nullptr;  // per block, read where `measure` is 0 (model units)
   Progress* progress = nullptr;      // updates per block and info (nullptr: silent)
 };
 
