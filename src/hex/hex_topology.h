@@ -4,6 +4,8 @@
 //! hexahedra, boundary flags), shared by projection and optimisation.
 #pragma once
 
+#include <algorithm>
+#include <cstddef>
 #include <vector>
 
 #include "subfab/hex/hex_mesh.h"
@@ -32,6 +34,22 @@ struct VertexAllowances {
 };
 VertexAllowances vertex_allowances(const HexMesh& mesh, const HexTopology& topo, const SurfaceProjector& surface,
                                    double on_surface = 1e-9);
+
+//! Grows `patch` (its entries the seeds, unchanged) by `rings` rings of edge
+//! neighbours, breadth first: a neighbour w of the last ring joins when
+//! `claim(w)` returns true (claim marks w so that it is not claimed twice:
+//! the caller's marks decide whether patches may overlap). The order is
+//! deterministic (ring by ring, neighbours sorted).
+template <class Claim>
+void grow_by_rings(std::vector<std::size_t>& patch, const HexTopology& topo, int rings, Claim&& claim) {
+  for (std::size_t ring = 0, begin = 0; ring < static_cast<std::size_t>(std::max(rings, 0)); ++ring) {
+    const std::size_t end = patch.size();
+    for (std::size_t i = begin; i < end; ++i)
+      for (int w : topo.neighbors[patch[i]])
+        if (claim(static_cast<std::size_t>(w))) patch.push_back(static_cast<std::size_t>(w));
+    begin = end;
+  }
+}
 
 //! The 12 edges of a hexahedron as local corner pairs.
 inline constexpr int kHexEdges[12][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6},

@@ -55,93 +55,91 @@ void snap_held_vertices(HexMesh& mesh, const SurfaceProjector& surface, const He
   std::vector<WorstRaiser::Pinned> pinned;
   std::vector<std::pair<std::size_t, Vec3>> carried;  // inner neighbours of the cluster and their step per stage
   for (int sweep = 0; sweep < options.snap_sweeps; ++sweep) {
-  if (sweep > 0 && find_held() == 0) break;
-  std::size_t progress = 0;
-  for (std::size_t seed = 0; seed < n; ++seed) {
-    if (!held[seed]) continue;
-    const int tag = static_cast<int>(seed);
-    // the cluster: held vertices connected to the seed along boundary edges (breadth first, at most max_cluster)
-    cluster.assign(1, seed);
-    held[seed] = 0;
-    for (std::size_t i = 0; i < cluster.size() && cluster.size() < options.max_cluster; ++i)
-      for (int w : topo.boundary_neighbors[cluster[i]])
-        if (held[idx(w)] && cluster.size() < options.max_cluster) cluster.push_back(idx(w)), held[idx(w)] = 0;
-    std::sort(cluster.begin(), cluster.end());
-    // the patch: the cluster and `rings` rings of edge neighbours
-    patch = cluster;
-    for (std::size_t v : patch) mark[v] = tag;
-    for (int ring = 0, begin = 0; ring < options.rings; ++ring) {
-      const std::size_t end = patch.size();
-      for (std::size_t i = static_cast<std::size_t>(begin); i < end; ++i)
-        for (int w : topo.neighbors[patch[i]])
-          if (mark[idx(w)] != tag) patch.push_back(idx(w)), mark[idx(w)] = tag;
-      begin = static_cast<int>(end);
-    }
-    std::sort(patch.begin(), patch.end());
-    moving.clear();
-    for (std::size_t v : patch)
-      if (!std::binary_search(cluster.begin(), cluster.end(), v)) moving.push_back(v);
-    hexes.clear();
-    for (std::size_t w : patch) hexes.insert(hexes.end(), topo.vertex_hexes[w].begin(), topo.vertex_hexes[w].end());
-    std::sort(hexes.begin(), hexes.end());
-    hexes.erase(std::unique(hexes.begin(), hexes.end()), hexes.end());
-    const double before = worst_of(mesh, hexes);
-    const double need = std::min(before, std::max(floor, options.patch_floor));
-    start.resize(cluster.size());
-    target.resize(cluster.size());
-    for (std::size_t i = 0; i < cluster.size(); ++i)
-      start[i] = mesh.vertices[cluster[i]], target[i] = surface.closest_point(start[i]);
-    saved.resize(patch.size());
-    for (std::size_t i = 0; i < patch.size(); ++i) saved[i] = mesh.vertices[patch[i]];
-    good = saved;
-    pinned.clear();
-    for (std::size_t i = 0; i < cluster.size(); ++i) pinned.push_back(raiser.pin(cluster[i], start[i]));
-    // the cluster moves by 1/stages of the way at a time, fixed while the
-    // rest of the patch follows; at the surface it slides with the patch
-    int reached = 0;
-    std::size_t steps = 0;
-    // the inner neighbours of the cluster (the other ends of its padding
-    // edges) are carried along by the mean step of their cluster neighbours:
-    // the padding edge keeps its direction (a corner cannot turn inside out
-    // by a gradient step of the normalised corners, so it must not start so)
-    carried.clear();
-    for (std::size_t i = 0; i < cluster.size(); ++i)
-      for (int w : topo.neighbors[cluster[i]])
-        if (!topo.on_boundary[idx(w)]) carried.emplace_back(idx(w), (target[i] - start[i]) / options.patch_stages);
-    std::sort(carried.begin(), carried.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-    std::size_t distinct = 0;  // one mean step per inner neighbour
-    for (std::size_t i = 0; i < carried.size();) {
-      const std::size_t w = carried[i].first;
-      Vec3 sum = Vec3::Zero();
-      int count = 0;
-      for (; i < carried.size() && carried[i].first == w; ++i) sum += carried[i].second, ++count;
-      carried[distinct++] = {w, sum / count};
-    }
-    carried.resize(distinct);
-    for (int k = 1; k <= options.patch_stages; ++k) {
-      const double t = static_cast<double>(k) / options.patch_stages;
-      for (const auto& [w, step] : carried) mesh.vertices[w] += step;
+    if (sweep > 0 && find_held() == 0) break;
+    std::size_t progress = 0;
+    for (std::size_t seed = 0; seed < n; ++seed) {
+      if (!held[seed]) continue;
+      const int tag = static_cast<int>(seed);
+      // the cluster: held vertices connected to the seed along boundary edges (breadth first, at most max_cluster)
+      cluster.assign(1, seed);
+      held[seed] = 0;
+      for (std::size_t i = 0; i < cluster.size() && cluster.size() < options.max_cluster; ++i)
+        for (int w : topo.boundary_neighbors[cluster[i]])
+          if (held[idx(w)] && cluster.size() < options.max_cluster) cluster.push_back(idx(w)), held[idx(w)] = 0;
+      std::sort(cluster.begin(), cluster.end());
+      // the patch: the cluster and `rings` rings of edge neighbours
+      patch = cluster;
+      for (std::size_t v : patch) mark[v] = tag;
+      grow_by_rings(patch, topo, options.rings, [&](std::size_t w) {
+        if (mark[w] == tag) return false;
+        mark[w] = tag;
+        return true;
+      });
+      std::sort(patch.begin(), patch.end());
+      moving.clear();
+      for (std::size_t v : patch)
+        if (!std::binary_search(cluster.begin(), cluster.end(), v)) moving.push_back(v);
+      hexes.clear();
+      for (std::size_t w : patch) hexes.insert(hexes.end(), topo.vertex_hexes[w].begin(), topo.vertex_hexes[w].end());
+      std::sort(hexes.begin(), hexes.end());
+      hexes.erase(std::unique(hexes.begin(), hexes.end()), hexes.end());
+      const double before = worst_of(mesh, hexes);
+      const double need = std::min(before, std::max(floor, options.patch_floor));
+      start.resize(cluster.size());
+      target.resize(cluster.size());
       for (std::size_t i = 0; i < cluster.size(); ++i)
-        raiser.pin(cluster[i], k == options.patch_stages ? target[i] : Vec3(start[i] + t * (target[i] - start[i])));
-      if (worst_of(mesh, hexes) < need) raiser.raise(k == options.patch_stages ? patch : moving, steps);
-      if (!(worst_of(mesh, hexes) >= need)) break;
-      reached = k;
-      for (std::size_t i = 0; i < patch.size(); ++i) good[i] = mesh.vertices[patch[i]];
+        start[i] = mesh.vertices[cluster[i]], target[i] = surface.closest_point(start[i]);
+      saved.resize(patch.size());
+      for (std::size_t i = 0; i < patch.size(); ++i) saved[i] = mesh.vertices[patch[i]];
+      good = saved;
+      pinned.clear();
+      for (std::size_t i = 0; i < cluster.size(); ++i) pinned.push_back(raiser.pin(cluster[i], start[i]));
+      // the cluster moves by 1/stages of the way at a time, fixed while the
+      // rest of the patch follows; at the surface it slides with the patch
+      int reached = 0;
+      std::size_t steps = 0;
+      // the inner neighbours of the cluster (the other ends of its padding
+      // edges) are carried along by the mean step of their cluster neighbours:
+      // the padding edge keeps its direction (a corner cannot turn inside out
+      // by a gradient step of the normalised corners, so it must not start so)
+      carried.clear();
+      for (std::size_t i = 0; i < cluster.size(); ++i)
+        for (int w : topo.neighbors[cluster[i]])
+          if (!topo.on_boundary[idx(w)]) carried.emplace_back(idx(w), (target[i] - start[i]) / options.patch_stages);
+      std::sort(carried.begin(), carried.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+      std::size_t distinct = 0;  // one mean step per inner neighbour
+      for (std::size_t i = 0; i < carried.size();) {
+        const std::size_t w = carried[i].first;
+        Vec3 sum = Vec3::Zero();
+        int count = 0;
+        for (; i < carried.size() && carried[i].first == w; ++i) sum += carried[i].second, ++count;
+        carried[distinct++] = {w, sum / count};
+      }
+      carried.resize(distinct);
+      for (int k = 1; k <= options.patch_stages; ++k) {
+        const double t = static_cast<double>(k) / options.patch_stages;
+        for (const auto& [w, step] : carried) mesh.vertices[w] += step;
+        for (std::size_t i = 0; i < cluster.size(); ++i)
+          raiser.pin(cluster[i], k == options.patch_stages ? target[i] : Vec3(start[i] + t * (target[i] - start[i])));
+        if (worst_of(mesh, hexes) < need) raiser.raise(k == options.patch_stages ? patch : moving, steps);
+        if (!(worst_of(mesh, hexes) >= need)) break;
+        reached = k;
+        for (std::size_t i = 0; i < patch.size(); ++i) good[i] = mesh.vertices[patch[i]];
+      }
+      // keep the last stage that held the quality (none: back to the start)
+      for (std::size_t i = 0; i < patch.size(); ++i) mesh.vertices[patch[i]] = good[i];
+      for (std::size_t i = 0; i < cluster.size(); ++i) {
+        const Vec3 kept = mesh.vertices[cluster[i]];
+        raiser.unpin(pinned[i]);  // its origin and allowance as before
+        if (reached > 0) raiser.pin(cluster[i], kept);
+      }
+      r.snap_steps += steps;
+      if (reached == options.patch_stages) r.snapped += cluster.size();
+      else if (reached > 0) r.closer += cluster.size();
+      progress += reached > 0;
     }
-    // keep the last stage that held the quality (none: back to the start)
-    for (std::size_t i = 0; i < patch.size(); ++i) mesh.vertices[patch[i]] = good[i];
-    for (std::size_t i = 0; i < cluster.size(); ++i) {
-      const Vec3 kept = mesh.vertices[cluster[i]];
-      raiser.unpin(pinned[i]);  // its origin and allowance as before
-      if (reached > 0) raiser.pin(cluster[i], kept);
-    }
-    r.snap_steps += steps;
-    if (reached == options.patch_stages) r.snapped += cluster.size();
-    else if (reached > 0) r.closer += cluster.size();
-    progress += reached > 0;
-  }
-  ++r.snap_sweeps;
-  if (progress == 0) break;
+    ++r.snap_sweeps;
+    if (progress == 0) break;
   }
 }
 

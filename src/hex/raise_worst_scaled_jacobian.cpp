@@ -37,13 +37,11 @@ std::vector<std::vector<std::size_t>> patches(const HexMesh& mesh, const detail:
     if (!free) continue;
     std::vector<std::size_t> patch;
     for (int v : mesh.hexes[h]) patch.push_back(idx(v)), taken[idx(v)] = 1;
-    for (int r = 0, begin = 0; r < rings; ++r) {
-      const std::size_t end = patch.size();
-      for (std::size_t i = static_cast<std::size_t>(begin); i < end; ++i)
-        for (int w : topo.neighbors[patch[i]])
-          if (!taken[idx(w)]) patch.push_back(idx(w)), taken[idx(w)] = 1;
-      begin = static_cast<int>(end);
-    }
+    detail::grow_by_rings(patch, topo, rings, [&](std::size_t w) {
+      if (taken[w]) return false;
+      taken[w] = 1;
+      return true;
+    });
     std::sort(patch.begin(), patch.end());
     out.push_back(std::move(patch));
   }

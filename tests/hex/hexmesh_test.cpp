@@ -136,6 +136,30 @@ TEST(Hexmesh, CactusDefaultKeepsTheLayersAndBeatsTableD1) {
   EXPECT_LT(r.mean_distance / r.diagonal, 0.0016);
 }
 
+// Regression (issue 14, branch hexavg): after branch hexsnap the rocker
+// arm's average fell from .911 to .901: the held-vertex stage leaves 139
+// hexahedra between the minimum and 0.5 (5 before), at the max-min optimum
+// of its patches, and the average pass (floor 0.5) let them only rise, so
+// they stayed frozen. With the floor at the held-vertex stage's 0.3 the
+// average is .906 (measured; the layer-keeping trial does not win on the
+// rocker arm, so it is left out here), the minimum and the vertices on the
+// surface as after hexsnap (.3215 / 22 off of 768).
+TEST(Hexmesh, RockerArmAverageIsNotFrozenByTheHeldVertices) {
+  if (!test::have_shared_models()) GTEST_SKIP() << "no ../shared/models";
+  const Mesh m = read_mesh(test::models_path("rocker_arm.obj"));
+  HexMeshOptions options;
+  options.layer_trial = false;
+  const HexMeshResult r = hexmesh(m, nullptr, options);
+  EXPECT_TRUE(r.check.valid());
+  EXPECT_EQ(r.histogram[0], 0u);
+  EXPECT_GE(r.pull.snapped, 80u);  // 93 measured
+  EXPECT_GE(r.avg_sj, 0.904);      // .9063 measured (.9006 with the floor at 0.5)
+  EXPECT_GE(r.avg_sj, r.mean.avg_before + 0.05);
+  EXPECT_GE(r.min_sj, 0.32);       // .3215
+  EXPECT_LE(r.vertices_off_surface, 25u);  // 22
+  EXPECT_LT(r.mean_vertex_distance / r.diagonal, 1.5e-4);  // 1.26e-4
+}
+
 // A small mesh gets the longer average pass (more sweeps, a smaller gain to
 // go on): an average at least as high, the same minimum.
 TEST(Hexmesh, SmallMeshGetsTheLongerAveragePass) {

@@ -27,7 +27,13 @@
 //!   3. a move is accepted only if every hexahedron h of the vertex keeps
 //!      scaled Jacobian >= min(its value before the move, floor), floor =
 //!      max(`floor`, the mesh's minimum at the start): the minimum of the
-//!      mesh never drops and nothing becomes inverted.
+//!      mesh never drops and nothing becomes inverted. The floor is the
+//!      held-vertex stage's (pull_boundary_to_surface, `patch_floor` = 0.3):
+//!      that stage leaves its patches between the mesh's minimum and 0.5, at
+//!      the max-min optimum of their joint ascent, where no single vertex
+//!      can raise one hexahedron without lowering a neighbour; with a floor
+//!      of 0.5 each of them could only rise, and they stayed frozen (rocker
+//!      arm: 139 hexahedra under 0.5 after that stage, 53 after this pass).
 //! After the first sweep a vertex is visited only when a vertex of its
 //! hexahedra moved by more than `active_move` of its mean edge in the last
 //! sweep. Stops after two sweeps in a row that raise the best average scaled
@@ -46,8 +52,9 @@ namespace subfab {
 
 struct RaiseMeanScaledJacobianOptions {
   double sharpness = 20.0;   // beta of the per-hexahedron soft minimum of its 8 corner determinants (dimensionless)
-  double floor = 0.5;        // a move may lower a hexahedron's scaled Jacobian, but not under this (nor under the
-                             // mesh's minimum; a hexahedron already under it may only rise)
+  double floor = 0.3;        // a move may lower a hexahedron's scaled Jacobian, but not under this (nor under the
+                             // mesh's minimum; a hexahedron already under it may only rise); 0.5 froze the
+                             // patches the held-vertex stage leaves under 0.5 (rocker arm .901 instead of .906)
   int max_sweeps = 25;       // sweeps over every vertex, at most (60 and 5e-5: rocker arm .911 instead of .908, but
                              // fertility and elephant over 10 s idle)
   double min_gain = 2e-4;    // stop when two sweeps in a row raise the best average scaled Jacobian by less than this
