@@ -210,9 +210,9 @@ int run_decompose(const DecomposeArgs& args) {
     std::ostringstream msg;
     msg << "WITHIN A TOLERANCE of " << result.tolerance << " (" << result.tolerance / diagonal
         << " x diagonal): " << result.num_tolerance_merges << " merges into milled shapes; ";
-    if (result.num_blocks_made_exact > 0)
-      msg << result.num_blocks_made_exact << " block(s) still beyond it after " << result.num_tolerance_rounds
-          << " round(s) replaced by the exact blocks of their pieces; ";
+    if (result.num_blocks_decomposed_in_place > 0)
+      msg << result.num_blocks_decomposed_in_place << " block(s) still beyond it after " << result.num_tolerance_rounds
+          << " round(s) decomposed again on their own carved pieces; ";
     msg
         << std::count(result.filled.begin(), result.filled.end(), char{1})
         << " block(s) stick out of the input (undercuts filled), measured deviation bound "
@@ -265,7 +265,7 @@ int run_decompose(const DecomposeArgs& args) {
     j["max_overhang_deg"] = steepest;
     j["tolerance"] = result.tolerance;
     j["num_tolerance_merges"] = result.num_tolerance_merges;
-    j["num_blocks_made_exact"] = result.num_blocks_made_exact;
+    j["num_blocks_decomposed_in_place"] = result.num_blocks_decomposed_in_place;
     j["num_sticking_out"] = std::count(result.filled.begin(), result.filled.end(), char{1});
     j["deviation_bound"] = result.deviation_bound;
     j["num_features_within_tolerance"] = result.num_features_within_tolerance;

@@ -476,7 +476,7 @@ MillToleranceResult mill_stage(const Mesh& solid, std::vector<Block> blocks, con
 //! misses every changed box keeps its measure). Each pass takes at least
 //! one block a level further (round, piece within T, exact), so it ends.
 //! `carved`: the round's carved pieces, `milled`: their measure. Sets
-//! `blocks`, `filled` and result.num_blocks_made_exact (the round's blocks
+//! `blocks`, `filled` and result.num_blocks_decomposed_in_place (the round's blocks
 //! replaced). Returns false, changing nothing in `blocks`, when a piece is
 //! not a closed 2-manifold, holds a crease or spike no exact block covers,
 //! or its exact decomposition fails: the caller then takes the exact path.
@@ -597,7 +597,7 @@ bool replace_failed_blocks(const Mesh& solid, const std::vector<Block>& round_ca
   blocks = std::move(milled.blocks);
   filled = std::move(milled.filled);
   result.deviation_bound = milled.max_deviation;
-  result.num_blocks_made_exact = replaced;
+  result.num_blocks_decomposed_in_place = replaced;
   return true;
 }
 
@@ -659,7 +659,7 @@ bool stages_within_tolerance(const Mesh& solid, const std::vector<std::array<dou
     if (last_round && options.tolerance_local_exact) {
       if (progress)
         progress->info(std::to_string(milled.num_failed()) + " block(s) beyond the tolerance after " +
-                       std::to_string(round + 1) + " round(s): replacing them by exact blocks of their pieces");
+                       std::to_string(round + 1) + " round(s): decomposing their carved pieces again, each on its own");
       if (replace_failed_blocks(solid, carved, milled, input, options, result, blocks, filled)) return true;
     }
     if (allowed == last) return false;  // nothing left to lower

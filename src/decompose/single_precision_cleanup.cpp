@@ -378,6 +378,11 @@ void round_and_repair(Mesh& machine, Mesh& block, SinglePrecisionCleanup& r) {
   for (Vec3& v : machine.vertices) v = Vec3(to_float(v.x()), to_float(v.y()), to_float(v.z()));
   collapse(machine, block, r);
   if (r.num_collapsed > 0) exact = machine.vertices;  // ids changed: nudge from the floats
+  // A needle only rounding flattens (its corners distinct, collinear in
+  // floats: a sliver triangle of a base polygon's triangulation, bimba at
+  // 7.5e-3) is split across its long edge, in the float coordinates.
+  const std::size_t num_vertices = machine.num_vertices();
+  if (split_needles(machine, block, r) > 0 && machine.num_vertices() != num_vertices) exact = machine.vertices;
   // Nudge the vertices of crossing faces, at most 3 passes.
   for (int pass = 0; pass < 3; ++pass) {
     const CheckResult crossing = check_self_intersections(machine, {.max_examples = 64});

@@ -190,7 +190,7 @@ TEST(ToleranceAllowances, BlocksStillBeyondTheToleranceAfterTheLastRoundAreMadeE
   within.tolerance_floor_scale = 0;
   const DecomposeResult t = decompose(boxes, within);
   EXPECT_EQ(t.num_tolerance_rounds, 1);
-  EXPECT_EQ(t.num_blocks_made_exact, 1u);
+  EXPECT_EQ(t.num_blocks_decomposed_in_place, 1u);
   EXPECT_LE(t.deviation_bound, 1.5);
   ASSERT_EQ(t.filled.size(), t.blocks.size());
   EXPECT_EQ(std::count(t.filled.begin(), t.filled.end(), char{1}), 1);  // the first box, its groove filled
@@ -200,7 +200,7 @@ TEST(ToleranceAllowances, BlocksStillBeyondTheToleranceAfterTheLastRoundAreMadeE
   }
   within.tolerance_local_exact = false;
   const DecomposeResult g = decompose(boxes, within);
-  EXPECT_EQ(g.num_blocks_made_exact, 0u);
+  EXPECT_EQ(g.num_blocks_decomposed_in_place, 0u);
   EXPECT_LE(t.blocks.size(), g.blocks.size());  // 4 and 4: the merges within T make the first box one block there
 }
 

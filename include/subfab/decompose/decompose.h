@@ -64,11 +64,11 @@ struct DecomposeOptions {
                                     // 56 blocks at the end vs 107 in place; bench/RESULTS.md)
   int tolerance_rounds = 4;         // within a tolerance: decompositions under allowances (tolerance_allowances())
                                     // before the exact one (>= 1)
-  bool tolerance_local_exact = true;  // within a tolerance, when the last round still has blocks beyond it: those
-                                    // blocks are replaced by the exact decomposition of their carved pieces (the
-                                    // others kept, all measured again); false, or when a piece cannot be decomposed
-                                    // exactly: the whole model is decomposed again without allowances (the pinned
-                                    // ones kept)
+  bool tolerance_local_exact = true;  // within a tolerance, when the last round still has blocks beyond it: each
+                                    // such block's carved piece is decomposed again on its own, within the tolerance
+                                    // and, where that fails too, exactly (the others kept, those near a change
+                                    // measured again); false, or when a piece cannot be decomposed on its own: the
+                                    // whole model is decomposed again without allowances (the pinned ones kept)
   std::vector<double> tolerance_depth_fractions = {2.0, 1.0, 0.5};  // within a tolerance: a face may lean past
                                     // vertical when its undercut depth <= q x T, q first the first of these (> 0,
                                     // unitless); where a block's milled shape fails the measure, the faces in its
@@ -119,8 +119,8 @@ struct DecomposeResult {
   std::size_t num_floored_faces = 0;     // faces first allowed to lean only in boxes whose base lies close enough
                                          // under them (allowances_with_floors())
   int num_tolerance_rounds = 0;          // decompositions under allowances that were milled and measured
-  std::size_t num_blocks_made_exact = 0; // blocks of the last round still beyond the tolerance, replaced by the
-                                         // exact decomposition of their carved pieces (tolerance_local_exact)
+  std::size_t num_blocks_decomposed_in_place = 0;  // blocks of the last round still beyond the tolerance whose
+                                         // carved pieces were decomposed again on their own (tolerance_local_exact)
   double sliver_thickness = 0.0;         // the sliver threshold used (model units; remove_slivers.h)
   std::size_t num_slivers = 0;           // slivers among the output blocks (kept: nothing removes them within T)
   std::size_t num_slivers_merged = 0;    // slivers merged into a neighbour within the tolerance
