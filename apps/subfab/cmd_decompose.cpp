@@ -40,6 +40,7 @@ struct DecomposeArgs {
   double tolerance = 0.0;
   double tolerance_abs = std::numeric_limits<double>::infinity();
   double tolerance_floors = DecomposeOptions{}.tolerance_floor_scale;
+  int tolerance_rounds = DecomposeOptions{}.tolerance_rounds;
   bool tolerance_given = false;  // --tolerance or --tolerance-abs on the command line (even 0)
   std::optional<double> smooth;  // --smooth [F]: smoothing cap, fraction of the diagonal
   bool no_view = false;
@@ -104,6 +105,7 @@ int run_decompose(const DecomposeArgs& args) {
   options.tolerance_fraction = args.tolerance;
   options.tolerance_abs = args.tolerance_abs;
   options.tolerance_floor_scale = args.tolerance_floors;
+  options.tolerance_rounds = args.tolerance_rounds;
   // Where the thin-feature repair gives up, decompose within 5e-4 x diagonal
   // rather than fail, unless the user chose exactness or another trade.
   if (!args.tolerance_given && !args.exact && !(args.max_overhang > 0) && !args.smooth)
@@ -333,9 +335,14 @@ void add_decompose_options(CLI::App& sub, DecomposeArgs& args) {
                  "Within a tolerance T: also let a face whose undercut is deeper than q x T lean past vertical in "
                  "the blocks whose base lies at most S x q x T / |n.d| under it (the fill there is that short; "
                  "S = this, default 0.25; 0 = per face only; where a block fails the measure, the faces allowed in it step "
-                 "down a level and their floors shrink with it, for up to 4 rounds, then the exact path; see "
+                 "down a level and their floors shrink with it, for up to 4 rounds (--tolerance-rounds); see "
                  "docs/decompose.md)")
       ->check(CLI::NonNegativeNumber);
+  sub.add_option("--tolerance-rounds", args.tolerance_rounds,
+                 "Within a tolerance: decompositions under allowances, each milled and measured, before the blocks "
+                 "still beyond the tolerance are decomposed again on their own carved pieces (within it, then "
+                 "exactly) [4]")
+      ->check(CLI::Range(1, 100));
   sub.add_option("--smooth", args.smooth,
                  "Fewer blocks for a detailed model (thesis 4.3.5): smooth it (Taubin low-pass, as `subfab smooth`, "
                  "each vertex moved at most F x the bounding-box diagonal; F defaults to 0.005 when omitted: write "

@@ -83,12 +83,16 @@ TEST(DecomposeCli, RefusesAnOpenMeshAndBadOptions) {
                              " --max-overhang 50");
   EXPECT_EQ(overhang.exit_code, 1) << overhang.output;
   EXPECT_NE(overhang.output.find("--max-overhang"), std::string::npos) << overhang.output;
+  auto rounds = run_subfab("decompose " + quoted(test::data_path("cross.off")) + " -o " + quoted(dir) +
+                           " --tolerance 1e-3 --tolerance-rounds 0");
+  EXPECT_EQ(rounds.exit_code, 1) << rounds.output;
+  EXPECT_NE(rounds.output.find("--tolerance-rounds"), std::string::npos) << rounds.output;
   auto no_dir = run_subfab("validate " + quoted(test::data_path("cross.off")) + " " + quoted(dir / "absent"));
   EXPECT_EQ(no_dir.exit_code, 2) << no_dir.output;
   auto help = run_subfab("decompose --help");
   EXPECT_EQ(help.exit_code, 0);
   for (const char* option : {"--max-height", "--max-height-abs", "--machine", "--no-orient", "--grid-factor",
-                             "--exact", "--max-deviation", "--max-overhang", "--threads", "--json", "--quiet"})
+                             "--exact", "--max-deviation", "--max-overhang", "--tolerance-rounds", "--threads", "--json", "--quiet"})
     EXPECT_NE(help.output.find(option), std::string::npos) << option;
 }
 
