@@ -546,7 +546,7 @@ bool replace_failed_blocks(const Mesh& solid, const std::vector<Block>& round_ca
           }
           part_level = count_allowed_faces(allowed.bits) > 0 ? 1 : 2;
           parts = carve_stages(piece, part_level == 1 ? &allowed : nullptr, input, quiet, sub, /*input_spacing=*/true);
-        } catch (const AlgorithmError& e) {
+        } catch (const std::exception& e) {  // any failure here only sends the model to the exact path
           why = std::string("its decomposition failed: ") + e.what();
         }
         DecomposeTimings& t = result.timings;
