@@ -1,0 +1,71 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// mill_within_tolerance() (issue 17, point 2): the grooved box as one block
+// along +z, whose milled shape fills the groove (1 deep).
+#include "subfab/decompose/mill_within_tolerance.h"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "subfab/core/error.h"
+#include "subfab/validate/milled_shape.h"
+#include "subfab/validate/validate_decomposition.h"
+#include "support/groove_shapes.h"
+
+namespace subfab {
+namespace {
+
+using test::grooved_box_cells;
+using test::voxel_mesh;
+
+std::vector<Block> whole_box(const Mesh& box) { return {Block{box, Axis::PosZ, 0}}; }
+
+TEST(MillWithinTolerance, TheGroovesFillIsMeasuredAgainstTheTolerance) {
+  // Filling the groove moves the surface by exactly 1 (groove_shapes.h):
+  // within T = 1.5 the bound (measure + 5% of T) lies in [1, 1.5]; at
+  // T = 0.9 the block fails.
+  const Mesh box = voxel_mesh(grooved_box_cells());
+  MillToleranceOptions o;
+  o.tolerance = 1.5;
+  const MillToleranceResult wide = mill_within_tolerance(box, whole_box(box), o);
+  ASSERT_EQ(wide.blocks.size(), 1u);
+  EXPECT_EQ(wide.filled[0], 1);
+  EXPECT_TRUE(wide.failures[0].empty()) << wide.failures[0];
+  EXPECT_GE(wide.deviation[0], 1.0 - 1e-9);
+  EXPECT_LE(wide.deviation[0], 1.5);
+  EXPECT_EQ(wide.max_deviation, wide.deviation[0]);
+  EXPECT_TRUE(is_height_field(wide.blocks[0].mesh, axis_direction(Axis::PosZ)));
+  o.tolerance = 0.9;
+  const MillToleranceResult narrow = mill_within_tolerance(box, whole_box(box), o);
+  EXPECT_EQ(narrow.num_failed(), 1u);
+  EXPECT_EQ(narrow.max_deviation, 0.0);
+}
+
+TEST(MillWithinTolerance, AKnownDeviationIsTakenInsteadOfMeasured) {
+  // replace_failed_blocks() passes the deviations of the blocks nothing
+  // near changed: they are taken as given (here one the measure could never
+  // give, to see that it was not measured), the milled shape still made.
+  const Mesh box = voxel_mesh(grooved_box_cells());
+  MillToleranceOptions o;
+  o.tolerance = 1.5;
+  const std::vector<char> measure{0};
+  const std::vector<double> known{0.25};
+  o.measure = &measure;
+  o.known_deviation = &known;
+  const MillToleranceResult r = mill_within_tolerance(box, whole_box(box), o);
+  EXPECT_EQ(r.filled[0], 1);
+  EXPECT_TRUE(r.failures[0].empty());
+  EXPECT_EQ(r.deviation[0], 0.25);
+  EXPECT_EQ(r.max_deviation, 0.25);
+  const std::vector<char> measure_all{1};
+  o.measure = &measure_all;
+  EXPECT_GE(mill_within_tolerance(box, whole_box(box), o).deviation[0], 1.0 - 1e-9);
+  const std::vector<double> none;
+  o.known_deviation = &none;
+  EXPECT_THROW(mill_within_tolerance(box, whole_box(box), o), InvalidArgumentError);
+  o.known_deviation = nullptr;
+  EXPECT_THROW(mill_within_tolerance(box, whole_box(box), o), InvalidArgumentError);
+}
+
+}  // namespace
+}  // namespace subfab
