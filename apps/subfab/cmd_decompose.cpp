@@ -222,7 +222,8 @@ int run_decompose(const DecomposeArgs& args) {
         << " x diagonal); every block is an exact height field (subfab validate checks the deviation)";
     msg << "; slivers (thinner than " << result.sliver_thickness / diagonal
         << " x diagonal where the model is thicker): " << result.num_slivers_merged << " merged, "
-        << result.num_slivers_dropped << " dropped, " << result.num_slivers << " left";
+        << result.num_slivers_dropped << " dropped, " << result.num_slivers_recarved
+        << " decomposed again with a neighbour, " << result.num_slivers << " left";
     if (!result.tolerance_fallback.empty()) {
       const bool slivers = result.tolerance_fallback.find("(slivers)") != std::string::npos;
       msg << "; NOT EXACT: " << (slivers ? result.tolerance_fallback : std::string("the thin-feature repair gave up"))
@@ -277,6 +278,7 @@ int run_decompose(const DecomposeArgs& args) {
     j["num_slivers"] = result.num_slivers;
     j["num_slivers_merged"] = result.num_slivers_merged;
     j["num_slivers_dropped"] = result.num_slivers_dropped;
+    j["num_slivers_recarved"] = result.num_slivers_recarved;
     j["timings_s"] = {{"orient", t.orient}, {"repair", t.repair},   {"field", t.field}, {"grow", t.grow},
                       {"cover", t.cover},   {"resolve", t.resolve}, {"carve", t.carve}, {"tolerance", t.tolerance}, {"total", t.total}};
     std::cout << j.dump(2) << "\n";

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <functional>
 #include <cstdint>
 #include <numeric>
 #include <optional>
@@ -601,6 +602,98 @@ bool replace_failed_blocks(const Mesh& solid, const std::vector<Block>& round_ca
   return true;
 }
 
+//! Step 9c of decompose() within a tolerance (issue 17, "No slivers"): a
+//! sliver the sliver stage left (no drop, merge or split within T) is
+//! decomposed again together with one block it touches, the largest first
+//! (at most `max_neighbours`): their exact union (rounded, cleaned as
+//! export cleans a block and checked as a closed solid without zero-area
+//! faces or self-intersections) goes through stages 2-7 on its own,
+//! exactly. Its blocks are exact height fields that make up the union, so
+//! the model made, its deviation and the overlaps stay as they were (up to
+//! the cleanup's 1e-10 x scale); the pair is replaced when that gives at
+//! most two blocks, none a sliver (sliver_flags(), validate's rule) and
+//! each passing the export's check `defect`. A new block sticks out of the
+//! solid when one of the pair did (`filled`, per block, follows). Returns
+//! the number of slivers removed; result.blocks and `filled` updated.
+std::size_t recarve_slivers(const Mesh& solid, const Mesh& input, const DecomposeOptions& options,
+                            DecomposeResult& result, std::vector<char>& filled, double min_thickness,
+                            const std::function<std::string(const Block&)>& defect, std::size_t max_neighbours = 4) {
+  Progress* progress = options.progress;
+  DecomposeOptions quiet = options;
+  quiet.progress = nullptr;
+  std::vector<Block>& blocks = result.blocks;
+  if (filled.size() != blocks.size()) filled.assign(blocks.size(), 0);
+  const std::size_t n0 = blocks.size();
+  const std::vector<char> sliver = sliver_flags(solid, blocks, min_thickness);
+  std::vector<char> alive(n0, 1);
+  std::size_t removed = 0;
+  for (std::size_t s = 0; s < n0; ++s) {
+    if (!sliver[s] || !alive[s]) continue;
+    const BoundingBox sb = bounding_box(blocks[s].mesh);
+    std::vector<std::pair<double, std::size_t>> near;  // (-volume, index): the largest first, ties by index
+    for (std::size_t j = 0; j < blocks.size(); ++j)
+      if (j != s && alive[j] && detail::boxes_touch(sb, bounding_box(blocks[j].mesh)))
+        near.emplace_back(-signed_volume(blocks[j].mesh), j);
+    std::sort(near.begin(), near.end());
+    if (near.size() > max_neighbours) near.resize(max_neighbours);
+    for (const auto& [minus_volume, j] : near) {
+      detail::RoundingReport rounding;
+      std::optional<Mesh> u = detail::exact_block_union(blocks[s].mesh, blocks[j].mesh, nullptr, rounding);
+      if (!u) continue;
+      std::vector<Block> parts;
+      const auto t = Clock::now();
+      DecomposeResult sub;
+      sub.max_height = result.max_height;
+      sub.max_overhang_deg = result.max_overhang_deg;
+      sub.tolerance = result.tolerance;
+      try {
+        Mesh piece = std::move(*u);
+        clean_rounded_block(piece, axis_direction(blocks[j].axis),
+                            FinalizeOptions{}.relative_tolerance * rounding_scale(solid));
+        require_closed_solid_result(piece, "the union of a sliver and its neighbour is not a clean solid: ");
+        if (find_infeasible_features(piece).feasible()) {
+          std::vector<Block> carved = carve_stages(piece, nullptr, input, quiet, sub, /*input_spacing=*/true);
+          MergeOptions mo;
+          mo.max_height = result.max_height;
+          mo.machine_size = options.machine ? *options.machine : Vec3::Constant(std::numeric_limits<double>::infinity());
+          mo.max_overhang_deg = result.max_overhang_deg;
+          parts = merge_blocks(std::move(carved), mo).blocks;
+        }
+      } catch (const std::exception&) {  // this pair cannot be decomposed again: the next neighbour
+        parts.clear();
+      }
+      result.timings.tolerance += seconds_since(t);
+      if (parts.empty() || parts.size() > 2) continue;
+      const std::vector<char> thin = sliver_flags(solid, parts, min_thickness);
+      if (std::any_of(thin.begin(), thin.end(), [](char c) { return c != 0; })) continue;
+      if (defect && std::any_of(parts.begin(), parts.end(), [&](const Block& b) { return !defect(b).empty(); })) continue;
+      if (progress)
+        progress->info("sliver block " + std::to_string(s + 1) + " and its neighbour " + std::to_string(j + 1) +
+                       " decomposed again together, exactly: " + std::to_string(parts.size()) + " block(s), no sliver");
+      const char f = static_cast<char>(filled[s] | filled[j]);
+      alive[s] = alive[j] = 0;
+      for (Block& b : parts) {
+        blocks.push_back(std::move(b));
+        filled.push_back(f);
+        alive.push_back(1);
+      }
+      ++removed;
+      break;
+    }
+  }
+  if (removed == 0) return 0;
+  std::vector<Block> kept;
+  std::vector<char> kept_filled;
+  for (std::size_t i = 0; i < blocks.size(); ++i)
+    if (alive[i]) {
+      kept.push_back(std::move(blocks[i]));
+      kept_filled.push_back(filled[i]);
+    }
+  blocks = std::move(kept);
+  filled = std::move(kept_filled);
+  return removed;
+}
+
 //! Stages 2-6 of decompose() within a tolerance (issue 17) on `solid`:
 //! under the allowances of the faces whose undercut is within it, then
 //! every block replaced by its milled shape and measured; where one fails,
@@ -905,6 +998,13 @@ DecomposeResult decompose_once(const Mesh& input, const DecomposeOptions& option
       result.num_slivers = sl.num_left;
       result.num_slivers_merged = sl.num_merged;
       result.num_slivers_dropped = sl.num_dropped;
+      // 9c. a sliver left: decomposed again together with a neighbour, exactly
+      if (result.tolerance > 0 && sl.num_left > 0) {
+        const std::size_t gone =
+            recarve_slivers(solid, input, options, result, result.filled, so.min_thickness, export_defect);
+        result.num_slivers -= std::min(result.num_slivers, gone);
+        result.num_slivers_recarved = gone;
+      }
     }
     (result.tolerance > 0 ? result.timings.tolerance : result.timings.carve) += seconds_since(tt);
   }
