@@ -602,7 +602,7 @@ bool replace_failed_blocks(const Mesh& solid, const std::vector<Block>& round_ca
   return true;
 }
 
-//! Step 9c of decompose() within a tolerance (issue 17, "No slivers"): a
+//! Step 9c of decompose() (issue 17, "No slivers"; at any tolerance): a
 //! sliver the sliver stage left (no drop, merge or split within T) is
 //! decomposed again together with one block it touches, the largest first
 //! (at most `max_neighbours`): their exact union (rounded, cleaned as
@@ -998,8 +998,9 @@ DecomposeResult decompose_once(const Mesh& input, const DecomposeOptions& option
       result.num_slivers = sl.num_left;
       result.num_slivers_merged = sl.num_merged;
       result.num_slivers_dropped = sl.num_dropped;
-      // 9c. a sliver left: decomposed again together with a neighbour, exactly
-      if (result.tolerance > 0 && sl.num_left > 0) {
+      // 9c. a sliver left: decomposed again together with a neighbour,
+      //     exactly (nothing deviates: at T = 0 too)
+      if (sl.num_left > 0) {
         const std::size_t gone =
             recarve_slivers(solid, input, options, result, result.filled, so.min_thickness, export_defect);
         result.num_slivers -= std::min(result.num_slivers, gone);
