@@ -98,27 +98,90 @@ struct Union {
   Axis axis = Axis::PosZ;
 };
 
+//! Can export's cleanup (clean_rounded_block(): edges shorter than `tol`
+//! collapsed, caps lower than it flipped) remove every face of `mesh` that
+//! keeps it from being a height field along d: each face facing away from
+//! d (n.d < 0) off the base level has an edge shorter than `tol` or a
+//! height under its longest edge below it? A cheap necessary condition.
+bool only_specks_face_away(const Mesh& mesh, const Vec3& d, double tol) {
+  double base = std::numeric_limits<double>::infinity();
+  for (const Vec3& v : mesh.vertices) base = std::min(base, v.dot(d));
+  for (const Triangle& t : mesh.faces) {
+    const Vec3& a = mesh.vertices[static_cast<std::size_t>(t[0])];
+    const Vec3& b = mesh.vertices[static_cast<std::size_t>(t[1])];
+    const Vec3& c = mesh.vertices[static_cast<std::size_t>(t[2])];
+    const Vec3 n = (b - a).cross(c - a);
+    if (!(n.dot(d) < 0) || std::max({a.dot(d), b.dot(d), c.dot(d)}) <= base) continue;
+    const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+    const double shortest = std::min({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+    if (!(shortest < tol || n.norm() < tol * longest)) return false;
+  }
+  return true;
+}
+
+//! The rounded union of two blocks whose exact union is no height field
+//! along any of `axes` only because of specks: faces far below export's
+//! cleanup tolerance that the corefinement leaves where the glued faces
+//! meet (bunny_lowres at 1e-3: one face of area 4e-22 facing up inside a
+//! -z union). The union gets the cleanup every block gets at export, along
+//! each axis in turn, and is kept for the first along which it is then a
+//! closed solid, a height field with no off-base face facing away at all
+//! (unit n.d >= 0, or the overhang allowance), passing export's block check,
+//! within the limits.
+std::optional<Union> cleaned_union(const Mesh& rounded, const std::vector<Axis>& axes, const MergeOptions& o) {
+  const FinalizeOptions fo;
+  const double tol = fo.relative_tolerance * rounding_scale(rounded);
+  HeightFieldOptions strict;
+  strict.normal_tolerance = o.max_overhang_deg > 0 ? height_field_normal_tolerance(o.max_overhang_deg) : 0.0;
+  FinalizeOptions check = fo;
+  check.normal_tolerance = height_field_normal_tolerance(o.max_overhang_deg);
+  for (Axis axis : axes) {
+    const Vec3 d = axis_direction(axis);
+    if (!only_specks_face_away(rounded, d, tol)) continue;
+    Mesh m = rounded;
+    try {
+      clean_rounded_block(m, d, tol, fo);
+    } catch (const std::exception&) {
+      continue;
+    }
+    if (m.faces.empty()) continue;
+    const BoundingBox box = bounding_box(m);
+    if (!check_closed_solid(m).ok() || !is_height_field(m, d, strict) ||
+        !block_defect(m, d, box.diagonal(), check).empty() ||
+        !detail::within_limits(box, axis, o.max_height, o.machine_size))
+      continue;
+    return Union{std::move(m), axis};
+  }
+  return std::nullopt;
+}
+
 //! The union of two blocks if it is a valid block along one of `axes` (the
 //! first that is), computed in a private arena. When rounding the exact
 //! union to doubles makes faces degenerate or flipped (thin triangles where
 //! the corefinement cut the glued faces), the rounded union gets the
 //! cleanup every block gets at export (clean_rounded_block, same relative
-//! tolerance) and is kept only if it then passes export's block check.
+//! tolerance) and is kept only if it then passes export's block check. When
+//! the exact union is a height field along none of them, cleaned_union()
+//! decides (specks of the corefinement).
 std::optional<Union> try_union(const Block& a, const Block& b, const std::vector<Axis>& axes, const MergeOptions& o) {
   if (axes.empty()) return std::nullopt;
   const double sine = overhang_sine(o.max_overhang_deg);
   Axis union_axis = Axis::PosZ;
+  bool exact_axis = false;
   detail::RoundingReport rounding;
   std::optional<Mesh> mesh = detail::exact_block_union(
       a.mesh, b.mesh,
       [&](const ExactMesh& u) {
         const auto axis = std::find_if(axes.begin(), axes.end(), [&](Axis x) { return exact_height_field(u, x, sine); });
-        if (axis == axes.end()) return false;
-        union_axis = *axis;
-        return true;
+        if (axis != axes.end()) {
+          union_axis = *axis;
+          exact_axis = true;
+        }
+        return true;  // rounded either way: cleaned_union() may still take it
       },
       rounding);
   if (!mesh) return std::nullopt;
+  if (!exact_axis) return cleaned_union(*mesh, axes, o);
   std::optional<Union> out = Union{std::move(*mesh), union_axis};
   const bool needs_cleanup = rounding.num_degenerate_faces + rounding.num_flipped_faces > 0;
   const Vec3 direction = axis_direction(out->axis);
