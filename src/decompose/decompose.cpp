@@ -613,8 +613,9 @@ bool replace_failed_blocks(const Mesh& solid, const std::vector<Block>& round_ca
 //! the cleanup's 1e-10 x scale); the pair is replaced when that gives at
 //! most two blocks, none a sliver (sliver_flags(), validate's rule) and
 //! each passing the export's check `defect`. A new block sticks out of the
-//! solid when one of the pair did (`filled`, per block, follows). Returns
-//! the number of slivers removed; result.blocks and `filled` updated.
+//! solid when one of the pair did (`filled`, per block, follows when it has
+//! one entry per block; else left empty). Returns the number of slivers
+//! removed; result.blocks and `filled` updated. Timed by the caller.
 std::size_t recarve_slivers(const Mesh& solid, const Mesh& input, const DecomposeOptions& options,
                             DecomposeResult& result, std::vector<char>& filled, double min_thickness,
                             const std::function<std::string(const Block&)>& defect, std::size_t max_neighbours = 4) {
@@ -622,7 +623,8 @@ std::size_t recarve_slivers(const Mesh& solid, const Mesh& input, const Decompos
   DecomposeOptions quiet = options;
   quiet.progress = nullptr;
   std::vector<Block>& blocks = result.blocks;
-  if (filled.size() != blocks.size()) filled.assign(blocks.size(), 0);
+  const bool track_filled = filled.size() == blocks.size();  // else (T = 0) none sticks out, `filled` stays empty
+  std::vector<char> sticks_out = track_filled ? filled : std::vector<char>(blocks.size(), 0);
   const std::size_t n0 = blocks.size();
   const std::vector<char> sliver = sliver_flags(solid, blocks, min_thickness);
   std::vector<char> alive(n0, 1);
@@ -641,7 +643,6 @@ std::size_t recarve_slivers(const Mesh& solid, const Mesh& input, const Decompos
       std::optional<Mesh> u = detail::exact_block_union(blocks[s].mesh, blocks[j].mesh, nullptr, rounding);
       if (!u) continue;
       std::vector<Block> parts;
-      const auto t = Clock::now();
       DecomposeResult sub;
       sub.max_height = result.max_height;
       sub.max_overhang_deg = result.max_overhang_deg;
@@ -662,7 +663,6 @@ std::size_t recarve_slivers(const Mesh& solid, const Mesh& input, const Decompos
       } catch (const std::exception&) {  // this pair cannot be decomposed again: the next neighbour
         parts.clear();
       }
-      result.timings.tolerance += seconds_since(t);
       if (parts.empty() || parts.size() > 2) continue;
       const std::vector<char> thin = sliver_flags(solid, parts, min_thickness);
       if (std::any_of(thin.begin(), thin.end(), [](char c) { return c != 0; })) continue;
@@ -670,11 +670,11 @@ std::size_t recarve_slivers(const Mesh& solid, const Mesh& input, const Decompos
       if (progress)
         progress->info("sliver block " + std::to_string(s + 1) + " and its neighbour " + std::to_string(j + 1) +
                        " decomposed again together, exactly: " + std::to_string(parts.size()) + " block(s), no sliver");
-      const char f = static_cast<char>(filled[s] | filled[j]);
+      const char f = static_cast<char>(sticks_out[s] | sticks_out[j]);
       alive[s] = alive[j] = 0;
       for (Block& b : parts) {
         blocks.push_back(std::move(b));
-        filled.push_back(f);
+        sticks_out.push_back(f);
         alive.push_back(1);
       }
       ++removed;
@@ -687,10 +687,10 @@ std::size_t recarve_slivers(const Mesh& solid, const Mesh& input, const Decompos
   for (std::size_t i = 0; i < blocks.size(); ++i)
     if (alive[i]) {
       kept.push_back(std::move(blocks[i]));
-      kept_filled.push_back(filled[i]);
+      kept_filled.push_back(sticks_out[i]);
     }
   blocks = std::move(kept);
-  filled = std::move(kept_filled);
+  if (track_filled) filled = std::move(kept_filled);
   return removed;
 }
 
