@@ -171,7 +171,7 @@ std::set<test::Cell> two_grooved_boxes_cells() {
   return cells;
 }
 
-TEST(ToleranceAllowances, BlocksStillBeyondTheToleranceAfterTheLastRoundAreMadeExactInPlace) {
+TEST(ToleranceAllowances, BlocksStillBeyondTheToleranceAfterTheLastRoundAreDecomposedAgainInPlace) {
   // T = 1.5, one round, both grooves' ceilings allowed (fraction 4): the
   // first box's milled shape deviates 1 <= T and is kept (one block), the
   // second's deviates 2 > T and no round is left. Only that block's carved
