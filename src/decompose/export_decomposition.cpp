@@ -95,6 +95,7 @@ std::vector<ExportedBlock> make_exported_blocks(const Mesh& input, const Decompo
   FinalizeResult finished = finalize_blocks(result.repaired_input ? *result.repaired_input : input, result, fo);
   std::vector<ExportedBlock> out;
   out.reserve(finished.blocks.size());
+  const double diagonal = bounding_box(input).diagonal();  // as finalize_blocks()'s checks
   for (FinalBlock& b : finished.blocks) {
     ExportedBlock e;
     e.axis = b.axis;
@@ -109,7 +110,10 @@ std::vector<ExportedBlock> make_exported_blocks(const Mesh& input, const Decompo
     // (the block, valid in doubles, is not damaged by a partial cleanup; check
     // 8 reports the STL).
     const Mesh block_before = e.mesh, machine_before = e.machine_mesh;
-    const detail::SinglePrecisionCleanup clean = detail::clean_single_precision(e.machine_mesh, e.mesh, &to_machine);
+    const detail::SinglePrecisionCleanup clean =
+        detail::clean_single_precision(e.machine_mesh, e.mesh, &to_machine, [&](const Mesh& block) {
+          return block_defect(block, e.direction, diagonal, fo).empty();
+        });
     if (!clean.ok) {
       e.mesh = block_before;
       e.machine_mesh = machine_before;
@@ -120,7 +124,10 @@ std::vector<ExportedBlock> make_exported_blocks(const Mesh& input, const Decompo
                     "block %zu: in single precision (STL) %zu vertices collapsed, %zu faces removed, %zu vertices "
                     "rounded the other way%s",
                     out.size(), clean.num_collapsed, clean.num_faces_removed, clean.num_nudged,
-                    clean.ok ? "" : "; its STL is still not a solid (validate check 8 will fail)");
+                    clean.ok               ? ""
+                    : clean.block_invalid ? "; the repair made the block invalid, so its STL is still not a solid "
+                                            "(validate check 8 will fail)"
+                                          : "; its STL is still not a solid (validate check 8 will fail)");
       progress->warn(buf);
     }
     // The frame twin follows the single-precision cleanup (its collapses and moves).

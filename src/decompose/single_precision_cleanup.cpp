@@ -6,6 +6,7 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <functional>
 #include <tuple>
 #include <vector>
 
@@ -16,19 +17,19 @@
 #include "geometry/exact_mesh.h"
 #include "geometry/solid_index.h"
 #include "subfab/checks/check_self_intersections.h"
+#include "subfab/mesh/float32.h"
 #include "subfab/validate/check_single_precision.h"
 
 namespace subfab::detail {
 namespace {
 
-double to_float(double x) { return static_cast<double>(static_cast<float>(x)); }
-
 //! The float on the other side of x from its rounding (x between them).
 double other_float(double x) {
-  const float f = static_cast<float>(x);
-  if (static_cast<double>(f) == x) return x;
-  return static_cast<double>(std::nextafter(f, static_cast<double>(f) < x ? std::numeric_limits<float>::infinity()
-                                                                         : -std::numeric_limits<float>::infinity()));
+  const double rounded = round_to_float32(x);  // not a bare cast: see float32.h
+  if (rounded == x) return x;
+  const float f = static_cast<float>(rounded);  // exact
+  return round_to_float32(static_cast<double>(
+      std::nextafter(f, rounded < x ? std::numeric_limits<float>::infinity() : -std::numeric_limits<float>::infinity())));
 }
 
 //! Merges vertices of `machine` that are equal (already floats), applies the
@@ -375,7 +376,7 @@ std::size_t remove_flat_tips(Mesh& machine, Mesh& block, SinglePrecisionCleanup&
 //! clean_single_precision()).
 void round_and_repair(Mesh& machine, Mesh& block, SinglePrecisionCleanup& r) {
   std::vector<Vec3> exact = machine.vertices;  // before rounding, for the other rounding
-  for (Vec3& v : machine.vertices) v = Vec3(to_float(v.x()), to_float(v.y()), to_float(v.z()));
+  for (Vec3& v : machine.vertices) v = round_to_float32(v);
   collapse(machine, block, r);
   if (r.num_collapsed > 0) exact = machine.vertices;  // ids changed: nudge from the floats
   // A needle only rounding flattens (its corners distinct, collinear in
@@ -418,12 +419,24 @@ void round_and_repair(Mesh& machine, Mesh& block, SinglePrecisionCleanup& r) {
 
 }  // namespace
 
-SinglePrecisionCleanup clean_single_precision(Mesh& machine, Mesh& block, const Eigen::Matrix3d* to_machine) {
+SinglePrecisionCleanup clean_single_precision(Mesh& machine, Mesh& block, const Eigen::Matrix3d* to_machine,
+                                              const std::function<bool(const Mesh&)>& block_valid) {
+  // A repair must keep the block (in doubles) valid too: merging a vertex
+  // into its float twin moves it in `block` as well, which can fold a face
+  // smaller than a float (couplingdown.off at 1e-3, block 049: one face of
+  // its top plane turned over).
+  const auto accepted = [&](SinglePrecisionCleanup& c, const Mesh& b) {
+    if (c.ok && block_valid && !block_valid(b)) {
+      c.ok = false;
+      c.block_invalid = true;
+    }
+    return c.ok;
+  };
   SinglePrecisionCleanup r;
   if (check_single_precision(machine).ok()) return r;
   const Mesh machine_before = machine, block_before = block;
   round_and_repair(machine, block, r);
-  if (r.ok) return r;
+  if (accepted(r, block)) return r;
   // Clusters of vertices closer than a few float spacings: collapse their
   // edges first (in double), then round again; kept when that gives a solid.
   const double magnitude = largest_coordinate(machine_before);
@@ -432,7 +445,7 @@ SinglePrecisionCleanup clean_single_precision(Mesh& machine, Mesh& block, const 
   Mesh machine2 = machine_before, block2 = block_before;
   if (collapse_short_edges(machine2, block2, 4 * spacing, again) > 0) {
     round_and_repair(machine2, block2, again);
-    if (again.ok) {
+    if (accepted(again, block2)) {
       machine = std::move(machine2);
       block = std::move(block2);
       return again;
@@ -458,7 +471,7 @@ SinglePrecisionCleanup clean_single_precision(Mesh& machine, Mesh& block, const 
   };
   SinglePrecisionCleanup snapped;
   Mesh machine3 = machine_before, block3 = block_before;
-  if (snap_and_round(machine3, block3, snapped)) {
+  if (snap_and_round(machine3, block3, snapped) && accepted(snapped, block3)) {
     machine = std::move(machine3);
     block = std::move(block3);
     return snapped;
@@ -474,7 +487,7 @@ SinglePrecisionCleanup clean_single_precision(Mesh& machine, Mesh& block, const 
   for (Vec3& v : block4.vertices) v = to_machine->transpose() * (v - shift);
   SinglePrecisionCleanup fin;
   fin.num_faces_removed = machine_before.num_faces();  // counted as replaced
-  if (!snap_and_round(*clipped, block4, fin)) return r;
+  if (!snap_and_round(*clipped, block4, fin) || !accepted(fin, block4)) return r;
   machine = std::move(*clipped);
   block = std::move(block4);
   return fin;

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <string>
 
 #include <Eigen/Core>
@@ -23,6 +24,8 @@ struct SinglePrecisionCleanup {
   std::size_t num_faces_removed = 0;  // faces that lost their area, or coincident pairs of opposite faces
   std::size_t num_nudged = 0;     // vertices rounded the other way (toward the neighbouring float)
   bool ok = true;                 // the float32 mesh is a closed solid without self-intersections
+                                  // (and the block passes `block_valid`)
+  bool block_invalid = false;     // a float32 repair was found but the block it made failed `block_valid`
 };
 
 //! Checks `machine` (machine coordinates) in float32 (check_single_precision())
@@ -41,6 +44,10 @@ struct SinglePrecisionCleanup {
 //! pinching the surface; that result is kept when it is a solid. The
 //! machine mesh's coordinates are left as floats. `ok` says whether the
 //! float32 mesh is a solid at the end (it is checked again).
-SinglePrecisionCleanup clean_single_precision(Mesh& machine, Mesh& block, const Eigen::Matrix3d* to_machine = nullptr);
+//! A repair is kept only when `block_valid` (when given) accepts the block it
+//! makes (export passes block_defect(): closed, no self-intersection, height
+//! field), since a merge moves the block's vertex too.
+SinglePrecisionCleanup clean_single_precision(Mesh& machine, Mesh& block, const Eigen::Matrix3d* to_machine = nullptr,
+                                              const std::function<bool(const Mesh&)>& block_valid = {});
 
 }  // namespace subfab::detail

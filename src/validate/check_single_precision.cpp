@@ -2,13 +2,13 @@
 #include "subfab/validate/check_single_precision.h"
 
 #include "subfab/checks/check_self_intersections.h"
+#include "subfab/mesh/float32.h"
 
 namespace subfab {
 
 Mesh round_to_single_precision(const Mesh& mesh, std::size_t* num_welded) {
   Mesh out = mesh;
-  for (Vec3& v : out.vertices)
-    v = Vec3(static_cast<float>(v.x()), static_cast<float>(v.y()), static_cast<float>(v.z()));
+  for (Vec3& v : out.vertices) v = round_to_float32(v);
   const std::size_t welded = weld_identical_vertices(out);
   if (num_welded) *num_welded = welded;
   return out;

@@ -5,10 +5,14 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <functional>
 #include <string>
 
 #include "subfab/decompose/export_decomposition.h"
 #include "subfab/mesh/read_mesh.h"
+#include "subfab/decompose/finalize_blocks.h"
+#include "subfab/mesh/write_mesh.h"
 #include "subfab/validate/check_single_precision.h"
 #include "subfab/validate/validate_decomposition.h"
 #include "support/block_test_shapes.h"
@@ -80,8 +84,13 @@ TEST(SinglePrecisionCleanup, ClusterOfNearlyCoincidentVerticesIsCollapsedAlongIt
 void expect_same_block(const Mesh& original, const Mesh& block, const Mesh& machine, Axis axis,
                        const Eigen::Matrix3d& to_machine, double rel) {
   EXPECT_TRUE(check_single_precision(machine).ok());
+  // what the STL file really holds, read back
+  const std::filesystem::path stl = test::temp_dir() / "machine.stl";
+  write_mesh(machine, stl);
+  EXPECT_TRUE(check_single_precision(read_mesh(stl)).ok());
   EXPECT_TRUE(check_closed_solid(block).ok());
   EXPECT_TRUE(check_height_field(block, axis_direction(axis)).ok());
+  EXPECT_EQ(block_defect(block, axis_direction(axis), bounding_box(original).diagonal()), "");
   EXPECT_NEAR(signed_volume(block), signed_volume(original), rel * signed_volume(original));
   EXPECT_EQ(block.faces, machine.faces);
   ASSERT_EQ(block.num_vertices(), machine.num_vertices());
@@ -105,14 +114,19 @@ struct CleanedBlock {
   detail::SinglePrecisionCleanup result;
 };
 
-CleanedBlock clean_regression_block(const std::string& file, Axis axis) {
+//! With `checked`, the cleanup is given export's check of the block (block_defect()).
+CleanedBlock clean_regression_block(const std::string& file, Axis axis, bool checked = false) {
   CleanedBlock c;
   c.original = read_mesh(test::data_path("regression/" + file));
   c.block = c.original;
   c.to_machine = axis_to_machine(axis);
   c.machine = machine_mesh_of(c.block, axis, Eigen::Matrix3d::Identity());
   EXPECT_FALSE(check_single_precision(c.machine).ok()) << file << " is already a solid in float32";
-  c.result = detail::clean_single_precision(c.machine, c.block, &c.to_machine);
+  const double diagonal = bounding_box(c.original).diagonal();
+  std::function<bool(const Mesh&)> valid;
+  if (checked)
+    valid = [axis, diagonal](const Mesh& b) { return block_defect(b, axis_direction(axis), diagonal).empty(); };
+  c.result = detail::clean_single_precision(c.machine, c.block, &c.to_machine, valid);
   return c;
 }
 
@@ -145,16 +159,46 @@ TEST(SinglePrecisionCleanup, AFlattenedBumpIsRemovedNotFolded) {
   expect_same_block(c.original, c.block, c.machine, Axis::NegX, c.to_machine, 1e-6);
 }
 
-TEST(SinglePrecisionCleanup, SubFloatFinOnABlocksSideIsClippedOff) {
+TEST(SinglePrecisionCleanup, SubFloatFinOnABlocksSideIsRemoved) {
   // Regression: couplingdown.off at the default settings, block 013 (axis
   // -x): a box plane through a vertex at y = -2.6e-9 left a fin 2.6e-9
-  // thick between it and the plane y = 0 on the block's side. Snapped, its
-  // two sides would coincide (coplanar crossing faces); it is clipped off
-  // exactly (the block loses 1e-11 of its volume).
-  const CleanedBlock c = clean_regression_block("couplingdown_block_013.obj", Axis::NegX);
+  // thick between it and the plane y = 0 on the block's side. It was first
+  // clipped off; since the rounding is right for every coordinate (float32.h),
+  // merging what rounds to the same float welds it (2 vertices).
+  const CleanedBlock c = clean_regression_block("couplingdown_block_013.obj", Axis::NegX, true);
   EXPECT_TRUE(c.result.ok);
+  EXPECT_LE(c.result.num_collapsed, 4u);
   expect_same_block(c.original, c.block, c.machine, Axis::NegX, c.to_machine, 1e-6);
-  EXPECT_LE(bounding_box(c.block).max.y(), -2.5e-9);  // the fin (y in [-2.6e-9, 0]) is gone
+}
+
+TEST(SinglePrecisionCleanup, AWeldThatIsASolidInFloat32ButNotWhenWrittenIsRefused) {
+  // Regression: couplingdown.off at --tolerance 1e-3 (2026-12-05), block 053
+  // (axis +z): the cleanup's own rounding left x and y unrounded (GCC 12.2
+  // -O3, see float32.h), so it saw a solid where the STL written had 2
+  // zero-area faces and 5 non-manifold edges (validate check 8).
+  const CleanedBlock c = clean_regression_block("couplingdown_tol_block_053.obj", Axis::PosZ, true);
+  EXPECT_TRUE(c.result.ok);
+  expect_same_block(c.original, c.block, c.machine, Axis::PosZ, c.to_machine, 1e-6);
+}
+
+TEST(SinglePrecisionCleanup, ARepairThatFoldsTheBlockInDoublesIsNotKept) {
+  // Regression: couplingdown.off at --tolerance 1e-3 (2026-12-05), block 049
+  // (axis +y, top on the noisy plane y = -8.9e-9): merging two vertices that
+  // round to one float moved the block's vertex too, and one face of its top
+  // turned over (cosine -1) and crossed its neighbours (validate checks 1, 2),
+  // though the STL was a solid. That repair is refused now; the next one
+  // (coordinates snapped to their plane first) keeps the block valid.
+  Mesh block = read_mesh(test::data_path("regression/couplingdown_tol_block_049.obj"));
+  const double diagonal = bounding_box(block).diagonal();
+  Mesh machine = machine_mesh_of(block, Axis::PosY, Eigen::Matrix3d::Identity());
+  const Eigen::Matrix3d to_machine = axis_to_machine(Axis::PosY);
+  const detail::SinglePrecisionCleanup unchecked = detail::clean_single_precision(machine, block, &to_machine);
+  ASSERT_TRUE(unchecked.ok);                                                     // the float32 mesh alone is fine,
+  EXPECT_NE(block_defect(block, axis_direction(Axis::PosY), diagonal), "");  // not the block
+  const CleanedBlock c = clean_regression_block("couplingdown_tol_block_049.obj", Axis::PosY, true);
+  EXPECT_TRUE(c.result.ok);
+  EXPECT_FALSE(c.result.block_invalid);
+  expect_same_block(c.original, c.block, c.machine, Axis::PosY, c.to_machine, 1e-6);
 }
 
 TEST(SinglePrecisionCleanup, ANeedleOnlyTheRoundingFlattensIsSplit) {
@@ -172,3 +216,4 @@ TEST(SinglePrecisionCleanup, ANeedleOnlyTheRoundingFlattensIsSplit) {
 
 }  // namespace
 }  // namespace subfab
+

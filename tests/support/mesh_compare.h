@@ -8,22 +8,13 @@
 #include <array>
 #include <vector>
 
+#include "subfab/mesh/float32.h"
 #include "subfab/mesh/mesh.h"
 
 namespace subfab::test {
 
-//! x rounded to float32. Through a volatile: GCC 12 -O2 (SLP vectorizer)
-//! was seen to drop the double->float->double pair for two packed
-//! coordinates, returning them unrounded.
-inline double round_to_float(double x) {
-  volatile float f = static_cast<float>(x);
-  return f;
-}
-
 //! v rounded to float32 (what binary STL and float PLY store).
-inline Vec3 to_float(const Vec3& v) {
-  return Vec3(round_to_float(v.x()), round_to_float(v.y()), round_to_float(v.z()));
-}
+inline Vec3 to_float(const Vec3& v) { return round_to_float32(v); }
 
 //! The triangle rotated so that its smallest index comes first (same
 //! orientation).

@@ -24,6 +24,21 @@ TEST(CheckSinglePrecision, SheetCollapses) {
   EXPECT_EQ(r.num_welded, 4u);
 }
 
+TEST(CheckSinglePrecision, SheetThinAlongXOrYCollapsesToo) {
+  // Regression: GCC 12.2 -O3 vectorized the rounding of the three
+  // coordinates and dropped it for x and y (only z was rounded), so a sheet
+  // thin along x or y passed (couplingdown.off at --tolerance 1e-3: block
+  // 053's STL was not a solid, decompose's check said it was).
+  for (int axis = 0; axis < 3; ++axis) {
+    Vec3 lo(0, 0, 0), hi(4.3, 2.4, 3.1);
+    lo[axis] = 1.0;
+    hi[axis] = 1.0 + 4e-8;
+    const SinglePrecisionReport r = check_single_precision(box_solid(lo, hi));
+    EXPECT_FALSE(r.ok()) << "axis " << axis;
+    EXPECT_EQ(r.num_welded, 4u) << "axis " << axis;
+  }
+}
+
 TEST(CheckSinglePrecision, FrustumTopVertexRoundedOntoItsBase) {
   // Regression (kitten --max-height 0.05, block 040 self-intersected after
   // float32 rounding): see test::float32_frustum().
