@@ -20,6 +20,7 @@
 #include "subfab/decompose/decompose_smoothed.h"
 #include "subfab/decompose/export_decomposition.h"
 #include "subfab/mesh/write_mesh.h"
+#include "subfab/validate/block_name.h"
 #include "subfab/view/write_assembly_sheet.h"
 #include "subfab/view/write_decomposition_view.h"
 
@@ -287,6 +288,20 @@ int run_decompose(const DecomposeArgs& args) {
               << " boxes chosen from " << result.num_grown_boxes << ", " << result.num_cycle_splits
               << " cycle splits, " << result.num_merges << " merges); check them with: subfab validate "
               << args.mesh << " " << args.outdir << "\n";
+  }
+  // Every block is valid in doubles (export checks it); a block whose STL the
+  // float32 cleanup could not make a solid fails validate's check 8: say so
+  // and exit 3 rather than 0 (the files are written).
+  std::string bad_stl;
+  std::size_t num_bad_stl = 0;
+  for (std::size_t i = 0; i < blocks.size(); ++i)
+    if (!blocks[i].single_precision_ok && num_bad_stl++ < 8) bad_stl += (bad_stl.empty() ? "" : ", ") + block_name(i);
+  if (num_bad_stl > 0) {
+    std::cerr << "error: " << num_bad_stl << " block(s) (" << bad_stl << (num_bad_stl > 8 ? ", ..." : "")
+              << ") are not closed solids once rounded to float32 in their STL files (mill/): features thinner "
+                 "than float32's resolution. Their OBJ files (blocks/, double precision) are valid; another grid "
+                 "(--grid-factor 0.8 or 1.25) gives other blocks and may avoid it (subfab validate: check 8)\n";
+    return kExitFailed;
   }
   return kExitOk;
 }

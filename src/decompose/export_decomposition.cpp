@@ -114,6 +114,7 @@ std::vector<ExportedBlock> make_exported_blocks(const Mesh& input, const Decompo
         detail::clean_single_precision(e.machine_mesh, e.mesh, &to_machine, [&](const Mesh& block) {
           return block_defect(block, e.direction, diagonal, fo).empty();
         });
+    e.single_precision_ok = clean.ok;
     if (!clean.ok) {
       e.mesh = block_before;
       e.machine_mesh = machine_before;

@@ -20,6 +20,7 @@
 #include "geometry/rotate_accurately.h"
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
+#include "subfab/validate/block_name.h"
 #include "subfab/validate/validate_decomposition.h"
 
 namespace subfab {
@@ -144,12 +145,6 @@ class Cleaner {
   double tol2_;
   double tol_;
 };
-
-std::string block_name(std::size_t i) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "block %03zu", i);
-  return buf;
-}
 
 struct VecHash {
   std::size_t operator()(const Vec3& v) const {

@@ -5,6 +5,7 @@
 #include "subfab/validate/validate_decomposition.h"
 #include "validate/box_separation.h"
 #include "validate/validate_booleans.h"
+#include "subfab/validate/block_name.h"
 #include "subfab/validate/check_single_precision.h"
 #include "subfab/validate/match_frame_blocks.h"
 #include "subfab/validate/measure_fill_deviation.h"
@@ -47,12 +48,6 @@ CheckReport named_check(std::string name) {
   return r;
 }
 
-std::string block_name(std::size_t i) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "block %03zu", i);
-  return buf;
-}
-
 //! Extent [min, max] of u.v over the vertices of `mesh`.
 std::pair<double, double> extent_along(const Mesh& mesh, const Vec3& u) {
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
@@ -65,6 +60,12 @@ std::pair<double, double> extent_along(const Mesh& mesh, const Vec3& u) {
 }
 
 }  // namespace
+
+std::string block_name(std::size_t i) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "block %03zu", i);
+  return buf;
+}
 
 double overlap_volume_bound(const Mesh& a, const Mesh& b, const Eigen::Matrix3d& frame) {
   constexpr double kInf = std::numeric_limits<double>::infinity();

@@ -86,6 +86,8 @@ struct ExportedBlock {
   Eigen::Matrix4d machine_transform = Eigen::Matrix4d::Identity();  // input -> machine coordinates
   Mesh frame_mesh;          // canonical frame, exact: what `mesh` was rounded from (frame_twin(); same faces)
   double frame_rounding = 0;  // max |mesh vertex - rotation^T x frame vertex| (model units)
+  bool single_precision_ok = true;  // its STL (float32) is a closed solid without self-intersections
+                                    // (false: the cleanup could not make it one; validate check 8 fails)
 };
 
 //! The rigid map of canonical axis `axis` to +Z (a signed permutation with
