@@ -389,7 +389,7 @@ const RegisterCommand kRegisterDecompose(make_command<DecomposeArgs>(
     "Creases and spikes that no axis-aligned block can cover in the chosen frame are smoothed locally "
     "first (deviation capped by --max-deviation and reported; OUTDIR/input_repaired.obj is then what the "
     "blocks decompose), or refused with --exact. Exit 2 if the mesh is not a closed, manifold, consistently "
-    "oriented solid (--repair repairs it first, as `subfab repair`); exit 3 if no valid decomposition was found.",
+    "oriented solid (--repair repairs it first, as `subfab repair`); exit 3 if no valid decomposition was found, or (files written) when a block's STL is not a solid in float32.",
     add_decompose_options, run_decompose));
 
 }  // namespace
