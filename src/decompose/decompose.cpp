@@ -641,7 +641,12 @@ std::size_t recarve_slivers(const Mesh& solid, const Mesh& input, const Decompos
     for (const auto& [minus_volume, j] : near) {
       detail::RoundingReport rounding;
       std::optional<Mesh> u = detail::exact_block_union(blocks[s].mesh, blocks[j].mesh, nullptr, rounding);
-      if (!u) continue;
+      if (!u) {
+        if (progress)
+          progress->info("sliver block " + std::to_string(s + 1) + " with its neighbour " + std::to_string(j + 1) +
+                         ": their exact union is not one solid");
+        continue;
+      }
       std::vector<Block> parts;
       DecomposeResult sub;
       sub.max_height = result.max_height;
@@ -660,13 +665,33 @@ std::size_t recarve_slivers(const Mesh& solid, const Mesh& input, const Decompos
           mo.max_overhang_deg = result.max_overhang_deg;
           parts = merge_blocks(std::move(carved), mo).blocks;
         }
-      } catch (const std::exception&) {  // this pair cannot be decomposed again: the next neighbour
+      } catch (const std::exception& e) {  // this pair cannot be decomposed again: the next neighbour
         parts.clear();
+        if (progress)
+          progress->info("sliver block " + std::to_string(s + 1) + " with its neighbour " + std::to_string(j + 1) +
+                         ": not decomposed again (" + e.what() + ")");
       }
-      if (parts.empty() || parts.size() > 2) continue;
+      // why a pair is not kept, in the log (elephant.off at 1e-3: its two
+      // slivers stay slivers, or become 3 blocks, with each neighbour)
+      const auto rejected = [&](const std::string& why) {
+        if (progress)
+          progress->info("sliver block " + std::to_string(s + 1) + " with its neighbour " + std::to_string(j + 1) +
+                         ": " + why);
+      };
+      if (parts.empty()) continue;
+      if (parts.size() > 2) {
+        rejected(std::to_string(parts.size()) + " blocks exactly (at most 2 kept)");
+        continue;
+      }
       const std::vector<char> thin = sliver_flags(solid, parts, min_thickness);
-      if (std::any_of(thin.begin(), thin.end(), [](char c) { return c != 0; })) continue;
-      if (defect && std::any_of(parts.begin(), parts.end(), [&](const Block& b) { return !defect(b).empty(); })) continue;
+      if (std::any_of(thin.begin(), thin.end(), [](char c) { return c != 0; })) {
+        rejected(std::to_string(parts.size()) + " block(s) exactly, one a sliver still");
+        continue;
+      }
+      if (defect && std::any_of(parts.begin(), parts.end(), [&](const Block& b) { return !defect(b).empty(); })) {
+        rejected("a block fails the export's check");
+        continue;
+      }
       if (progress)
         progress->info("sliver block " + std::to_string(s + 1) + " and its neighbour " + std::to_string(j + 1) +
                        " decomposed again together, exactly: " + std::to_string(parts.size()) + " block(s), no sliver");
