@@ -105,7 +105,7 @@ MillToleranceResult mill_within_tolerance(const Mesh& solid, std::vector<Block> 
   // 3. the deviation near every filled block, the others that stick out
   //    included: in the boxes that cover its fill (one task per box, all
   //    blocks' boxes in one parallel loop: a big block has many), or near
-  //    the whole block when fill_columns() could not bound the fill.
+  //    the columns of the whole block when fill_columns() could not bound the fill.
   const FillDeviationMeter meter(solid);
   std::vector<const Mesh*> all_filled;
   for (std::size_t i = 0; i < n; ++i)

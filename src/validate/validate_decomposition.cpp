@@ -602,7 +602,7 @@ ValidationReport validate_decomposition(const Mesh& input, const std::vector<Val
     // Only the points in the part of a block outside the input can deviate
     // (measure_fill_deviation.h, with C = block ∩ input): measured in boxes
     // that cover that part (check 4 computed it; in the frame, computed
-    // again there), near the whole block where the boolean fell back to the
+    // again there), in the columns of the whole block where the boolean fell back to the
     // whole input.
     std::vector<std::optional<std::vector<BoundingBox>>> cover(filled.size());
     std::vector<std::string> errors(filled.size());

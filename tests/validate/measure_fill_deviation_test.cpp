@@ -307,6 +307,31 @@ TEST(MeasureFills, TheLocalPassAgreesWithTheTwoReachesOnTwoFilledBlocksWhoseFill
   }
 }
 
+TEST(MeasureFills, ABlockWithoutAFillCoverIsMeasuredInTheColumnsOfTheWholeBlock) {
+  // A nullopt cover (fill_columns() or check 4's outside part unavailable)
+  // was one region around the whole block: more than 16 GB of exact
+  // booleans on cactus.off at 1e-3 (two blocks of 5760 and 3842 faces).
+  // Now the block's own solid_columns(): the same deviation as the fill's
+  // boxes and as the whole-block measure.
+  const Mesh solid = voxel_mesh(grooved_box_cells());
+  const FillDeviationMeter meter(solid);
+  for (Axis axis : {Axis::PosZ, Axis::PosX}) {
+    const Mesh milled = milled_along(solid, axis);
+    const auto boxes = fill_columns(solid, milled, axis);
+    ASSERT_TRUE(boxes.has_value());
+    const FillDeviationOptions o{.reach = 1.5, .error = 0.01};
+    const std::vector<FillDeviation> unbounded = measure_fills(meter, {&milled}, {std::nullopt}, {&milled}, o);
+    const std::vector<FillDeviation> bounded = measure_fills(meter, {&milled}, {*boxes}, {&milled}, o);
+    const FillDeviation whole = meter.measure(milled, {}, o);
+    ASSERT_TRUE(unbounded[0].failure.empty()) << unbounded[0].failure;
+    ASSERT_TRUE(whole.failure.empty()) << whole.failure;
+    EXPECT_NEAR(unbounded[0].to_input, whole.to_input, 0.02);
+    EXPECT_NEAR(unbounded[0].from_input, whole.from_input, 0.02);
+    EXPECT_NEAR(unbounded[0].bound(), bounded[0].bound(), 0.02);
+    EXPECT_GE(unbounded[0].bound(), 1.0);  // the groove's depth
+  }
+}
+
 //! validate's check 10: the deviation of `block` measured only over its part
 //! outside `solid` (outside_part() as check 4 computes it, solid_columns()).
 FillDeviation measure_outside_part(const Mesh& solid, const Mesh& block, const FillDeviationOptions& o,

@@ -223,8 +223,8 @@ std::vector<BoundingBox> solid_columns(const Mesh& part, double merge_distance =
 
 //! measure_fill() of many blocks at once: one parallel task per box (a big
 //! block has many; in each pass, boxes of a block closer than twice the pass's
-//! reach merged), measure() for a block whose `fills` entry is nullopt
-//! (fill_columns() could not bound it). blocks[i] sticks out with the fill
+//! reach merged); a block whose `fills` entry is nullopt (fill_columns()
+//! could not bound it) is measured in solid_columns() of the whole block. blocks[i] sticks out with the fill
 //! boxes fills[i]; `filled` lists every block that sticks out (the others
 //! near each region; a block is skipped in its own list). Deterministic
 //! whatever the thread count (each task's result is independent of it).
