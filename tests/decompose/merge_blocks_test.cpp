@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include "subfab/decompose/finalize_blocks.h"
 #include "subfab/mesh/read_mesh.h"
 #include "support/block_test_shapes.h"
 #include "support/test_support.h"
@@ -130,6 +131,21 @@ TEST(MergeBlocks, AUnionWithACorefinementSpeckIsCleanedAndMerged) {
   strict.normal_tolerance = 0.0;
   EXPECT_TRUE(is_height_field(u.mesh, -Vec3::UnitZ(), strict));
   EXPECT_NEAR(signed_volume(u.mesh), signed_volume(a) + signed_volume(b), 1e-9 * signed_volume(b));
+}
+
+TEST(MergeBlocks, AUnionWhoseRoundedFacesCrossIsNotMerged) {
+  // Regression: humanoid.off at --tolerance 1e-3 (2026-12-06): a milled
+  // block and its neighbour, both -z, whose exact union is a -z height field
+  // but whose union rounded to doubles has 35 pairs of crossing faces (edges
+  // 0.005-0.05). merge_blocks kept it (it checked closedness and the height
+  // field only), and the export refused the block (exit 3).
+  const Mesh a = read_mesh(test::data_path("regression/humanoid_tol_merge_a.obj"));
+  const Mesh b = read_mesh(test::data_path("regression/humanoid_tol_merge_b.obj"));
+  const MergeResult r = merge_blocks({make_block(a, Axis::NegZ, 0), make_block(b, Axis::NegZ, 1)});
+  EXPECT_EQ(r.num_merges, 0u);
+  ASSERT_EQ(r.blocks.size(), 2u);
+  for (const Block& block : r.blocks)
+    EXPECT_EQ(block_defect(block.mesh, axis_direction(block.axis), bounding_box(block.mesh).diagonal()), "");
 }
 
 }  // namespace
