@@ -639,12 +639,17 @@ std::size_t recarve_slivers(const Mesh& solid, const Mesh& input, const Decompos
     std::sort(near.begin(), near.end());
     if (near.size() > max_neighbours) near.resize(max_neighbours);
     for (const auto& [minus_volume, j] : near) {
+      // why a pair is not kept, in the log (elephant.off at 1e-3: its two
+      // slivers stay slivers, or become 3 blocks, with each neighbour)
+      const auto rejected = [&, j = j](const std::string& why) {
+        if (progress)
+          progress->info("sliver block " + std::to_string(s + 1) + " with its neighbour " + std::to_string(j + 1) +
+                         ": " + why);
+      };
       detail::RoundingReport rounding;
       std::optional<Mesh> u = detail::exact_block_union(blocks[s].mesh, blocks[j].mesh, nullptr, rounding);
       if (!u) {
-        if (progress)
-          progress->info("sliver block " + std::to_string(s + 1) + " with its neighbour " + std::to_string(j + 1) +
-                         ": their exact union is not one solid");
+        rejected("their exact union is not one solid");
         continue;
       }
       std::vector<Block> parts;
@@ -667,17 +672,8 @@ std::size_t recarve_slivers(const Mesh& solid, const Mesh& input, const Decompos
         }
       } catch (const std::exception& e) {  // this pair cannot be decomposed again: the next neighbour
         parts.clear();
-        if (progress)
-          progress->info("sliver block " + std::to_string(s + 1) + " with its neighbour " + std::to_string(j + 1) +
-                         ": not decomposed again (" + e.what() + ")");
+        rejected(std::string("not decomposed again (") + e.what() + ")");
       }
-      // why a pair is not kept, in the log (elephant.off at 1e-3: its two
-      // slivers stay slivers, or become 3 blocks, with each neighbour)
-      const auto rejected = [&](const std::string& why) {
-        if (progress)
-          progress->info("sliver block " + std::to_string(s + 1) + " with its neighbour " + std::to_string(j + 1) +
-                         ": " + why);
-      };
       if (parts.empty()) continue;
       if (parts.size() > 2) {
         rejected(std::to_string(parts.size()) + " blocks exactly (at most 2 kept)");

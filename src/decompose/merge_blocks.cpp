@@ -119,6 +119,17 @@ bool only_specks_face_away(const Mesh& mesh, const Vec3& d, double tol) {
   return true;
 }
 
+//! Does the rounded union `m` pass export's block check along `axis`
+//! (block_defect(): closed, no zero-area face, height field with the
+//! overhang allowance, no self-intersection) and fit the limits?
+bool valid_union(const Mesh& m, Axis axis, const MergeOptions& o) {
+  FinalizeOptions check;
+  check.normal_tolerance = height_field_normal_tolerance(o.max_overhang_deg);
+  const BoundingBox box = bounding_box(m);
+  return block_defect(m, axis_direction(axis), box.diagonal(), check).empty() &&
+         detail::within_limits(box, axis, o.max_height, o.machine_size);
+}
+
 //! The rounded union of two blocks whose exact union is no height field
 //! along any of `axes` only because of specks: faces far below export's
 //! cleanup tolerance that the corefinement leaves where the glued faces
@@ -133,8 +144,6 @@ std::optional<Union> cleaned_union(const Mesh& rounded, const std::vector<Axis>&
   const double tol = fo.relative_tolerance * rounding_scale(rounded);
   HeightFieldOptions strict;
   strict.normal_tolerance = o.max_overhang_deg > 0 ? height_field_normal_tolerance(o.max_overhang_deg) : 0.0;
-  FinalizeOptions check = fo;
-  check.normal_tolerance = height_field_normal_tolerance(o.max_overhang_deg);
   for (Axis axis : axes) {
     const Vec3 d = axis_direction(axis);
     if (!only_specks_face_away(rounded, d, tol)) continue;
@@ -145,11 +154,7 @@ std::optional<Union> cleaned_union(const Mesh& rounded, const std::vector<Axis>&
       continue;
     }
     if (m.faces.empty()) continue;
-    const BoundingBox box = bounding_box(m);
-    if (!check_closed_solid(m).ok() || !is_height_field(m, d, strict) ||
-        !block_defect(m, d, box.diagonal(), check).empty() ||
-        !detail::within_limits(box, axis, o.max_height, o.machine_size))
-      continue;
+    if (!check_closed_solid(m).ok() || !is_height_field(m, d, strict) || !valid_union(m, axis, o)) continue;
     return Union{std::move(m), axis};
   }
   return std::nullopt;
@@ -184,13 +189,11 @@ std::optional<Union> try_union(const Block& a, const Block& b, const std::vector
   if (!exact_axis) return cleaned_union(*mesh, axes, o);
   std::optional<Union> out = Union{std::move(*mesh), union_axis};
   const bool needs_cleanup = rounding.num_degenerate_faces + rounding.num_flipped_faces > 0;
-  const Vec3 direction = axis_direction(out->axis);
-  const BoundingBox box = bounding_box(out->mesh);
-  FinalizeOptions fo;
-  fo.normal_tolerance = height_field_normal_tolerance(o.max_overhang_deg);
   if (needs_cleanup) {
+    FinalizeOptions fo;
+    fo.normal_tolerance = height_field_normal_tolerance(o.max_overhang_deg);
     try {
-      clean_rounded_block(out->mesh, direction, fo.relative_tolerance * rounding_scale(out->mesh), fo);
+      clean_rounded_block(out->mesh, axis_direction(out->axis), fo.relative_tolerance * rounding_scale(out->mesh), fo);
     } catch (const std::exception&) {
       return std::nullopt;
     }
@@ -199,9 +202,7 @@ std::optional<Union> try_union(const Block& a, const Block& b, const std::vector
   // height field, no self-intersection): humanoid.off at 1e-3 merged a
   // milled block with a neighbour into a union whose faces crossed (66
   // pairs), which the export then refused (exit 3).
-  if (!block_defect(out->mesh, direction, box.diagonal(), fo).empty() ||
-      !detail::within_limits(bounding_box(out->mesh), out->axis, o.max_height, o.machine_size))
-    return std::nullopt;
+  if (!valid_union(out->mesh, out->axis, o)) return std::nullopt;
   return out;
 }
 
