@@ -960,14 +960,19 @@ DecomposeResult decompose_once(const Mesh& input, const DecomposeOptions& option
   // machine STL).
   FinalizeOptions fo;
   fo.normal_tolerance = height_field_normal_tolerance(result.max_overhang_deg);
-  const RoundedBlockCheck rounding(result.repaired_input ? *result.repaired_input : input, result, fo);
-  const auto export_defect = [&rounding, &result](const Block& b) {
+  const Mesh& decomposed = result.repaired_input ? *result.repaired_input : input;
+  const RoundedBlockCheck rounding(decomposed, result, fo);
+  const double decomposed_diagonal = bounding_box(decomposed).diagonal();
+  const auto export_defect = [&rounding, &result, &fo, decomposed_diagonal](const Block& b) {
     Mesh finished;
     std::string defect = rounding.defect(b, &finished);
     if (defect.empty() && !finished.faces.empty()) {
+      // the export's own float32 step (export_decomposition())
       Mesh stl = machine_mesh_of(finished, b.axis, result.rotation);
       const Eigen::Matrix3d to_machine = axis_to_machine(b.axis) * result.rotation;
-      if (!detail::clean_single_precision(stl, finished, &to_machine).ok) defect = "not a solid in single precision";
+      const Vec3 direction = detail::rotate_accurately(result.rotation.transpose(), axis_direction(b.axis));
+      if (!detail::clean_block_for_stl(stl, finished, to_machine, direction, decomposed_diagonal, fo).ok)
+        defect = "not a solid in single precision";
     }
     return defect;
   };
@@ -1031,32 +1036,48 @@ DecomposeResult decompose_once(const Mesh& input, const DecomposeOptions& option
     (result.tolerance > 0 ? result.timings.tolerance : result.timings.carve) += seconds_since(tt);
   }
   // 9b. at the command's default, slivers left at T = 0: the same blocks
-  //     with the sliver stage run again within a tolerance, the smallest of
-  //     1, 2 and 5 x the sliver thickness (1e-4 x diagonal) up to the
-  //     fallback tolerance that removes them all (the threshold is
-  //     max(1e-4 x diagonal, T): a larger T makes more blocks slivers);
-  //     decompose() chooses.
+  //     with the sliver stage run again within a tolerance: 1, then 2,
+  //     then 5 x the sliver thickness (1e-4 x diagonal), up to the fallback
+  //     tolerance, each level on what the one before left (only the slivers
+  //     it could not remove, and those the larger threshold adds, are
+  //     treated again: the threshold is max(1e-4 x diagonal, T), a larger T
+  //     makes more blocks slivers), until none is left; decompose() chooses.
   if (slivers_within && result.tolerance == 0 && result.num_slivers > 0 && options.fallback_tolerance_fraction > 0) {
     const auto tt = Clock::now();
     std::vector<double> ladder;
     for (double f : {options.sliver_thickness, 2 * options.sliver_thickness, options.fallback_tolerance_fraction})
       if (f > 0 && f <= options.fallback_tolerance_fraction && (ladder.empty() || f > ladder.back())) ladder.push_back(f);
+    std::vector<Block> current = result.blocks;
+    std::vector<char> current_filled;  // empty: no block sticks out (exact blocks)
+    double bound = 0.0;
+    std::size_t merged = 0, dropped = 0, slivers = result.num_slivers;
     for (double f : ladder) {
-      DecomposeResult within = result;
-      within.tolerance = f * diagonal;
-      const SliverRemovalOptions so = sliver_options(within.tolerance);
+      const double tolerance = f * diagonal;
+      SliverRemovalOptions so = sliver_options(tolerance);
+      if (!current_filled.empty()) so.filled = &current_filled;
       if (progress)
-        progress->info(std::to_string(result.num_slivers) + " sliver block(s) at tolerance 0: the sliver stage again "
-                       "on the exact blocks, within " + std::to_string(f) + " x diagonal");
-      SliverRemovalResult sl = remove_slivers(solid, result.blocks, so);
-      if (sl.num_left > 0) continue;
-      within.blocks = std::move(sl.blocks);
-      within.filled = sl.filled.empty() ? std::vector<char>(within.blocks.size(), 0) : std::move(sl.filled);
-      within.deviation_bound = sl.max_deviation;
+        progress->info(f == ladder.front()
+                           ? std::to_string(slivers) + " sliver block(s) at tolerance 0: the sliver stage again on "
+                                                       "the exact blocks, within " + std::to_string(f) + " x diagonal"
+                           : std::to_string(slivers) + " sliver block(s) left: the sliver stage again on those "
+                                                       "blocks, within " + std::to_string(f) + " x diagonal");
+      SliverRemovalResult sl = remove_slivers(solid, std::move(current), so);
+      bound = std::max(bound, sl.max_deviation);
+      merged += sl.num_merged;
+      dropped += sl.num_dropped;
+      slivers = sl.num_left;
+      current = std::move(sl.blocks);
+      if (!sl.filled.empty()) current_filled = std::move(sl.filled);
+      if (slivers > 0) continue;
+      DecomposeResult within = result;
+      within.tolerance = tolerance;
+      within.blocks = std::move(current);
+      within.filled = current_filled.empty() ? std::vector<char>(within.blocks.size(), 0) : std::move(current_filled);
+      within.deviation_bound = bound;
       within.sliver_thickness = so.min_thickness;
       within.num_slivers = 0;
-      within.num_slivers_merged = sl.num_merged;
-      within.num_slivers_dropped = sl.num_dropped;
+      within.num_slivers_merged = merged;
+      within.num_slivers_dropped = dropped;
       within.timings.tolerance += seconds_since(tt);
       *slivers_within = std::move(within);
       break;

@@ -92,10 +92,11 @@ std::vector<ExportedBlock> make_exported_blocks(const Mesh& input, const Decompo
   fo.normal_tolerance = height_field_normal_tolerance(result.max_overhang_deg);
   fo.progress = progress;
   // After a repair (4.3.5) the blocks decompose the repaired input.
-  FinalizeResult finished = finalize_blocks(result.repaired_input ? *result.repaired_input : input, result, fo);
+  const Mesh& decomposed = result.repaired_input ? *result.repaired_input : input;
+  FinalizeResult finished = finalize_blocks(decomposed, result, fo);
   std::vector<ExportedBlock> out;
   out.reserve(finished.blocks.size());
-  const double diagonal = bounding_box(input).diagonal();  // as finalize_blocks()'s checks
+  const double diagonal = bounding_box(decomposed).diagonal();  // as finalize_blocks()'s checks
   for (FinalBlock& b : finished.blocks) {
     ExportedBlock e;
     e.axis = b.axis;
@@ -111,9 +112,7 @@ std::vector<ExportedBlock> make_exported_blocks(const Mesh& input, const Decompo
     // 8 reports the STL).
     const Mesh block_before = e.mesh, machine_before = e.machine_mesh;
     const detail::SinglePrecisionCleanup clean =
-        detail::clean_single_precision(e.machine_mesh, e.mesh, &to_machine, [&](const Mesh& block) {
-          return block_defect(block, e.direction, diagonal, fo).empty();
-        });
+        detail::clean_block_for_stl(e.machine_mesh, e.mesh, to_machine, e.direction, diagonal, fo);
     e.single_precision_ok = clean.ok;
     if (!clean.ok) {
       e.mesh = block_before;

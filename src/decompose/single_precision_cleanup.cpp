@@ -493,4 +493,11 @@ SinglePrecisionCleanup clean_single_precision(Mesh& machine, Mesh& block, const 
   return fin;
 }
 
+SinglePrecisionCleanup clean_block_for_stl(Mesh& machine, Mesh& block, const Eigen::Matrix3d& to_machine,
+                                           const Vec3& direction, double diagonal, const FinalizeOptions& options) {
+  return clean_single_precision(machine, block, &to_machine, [&](const Mesh& b) {
+    return block_defect(b, direction, diagonal, options).empty();
+  });
+}
+
 }  // namespace subfab::detail

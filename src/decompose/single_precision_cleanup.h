@@ -13,6 +13,7 @@
 
 #include <Eigen/Core>
 
+#include "subfab/decompose/finalize_blocks.h"
 #include "subfab/mesh/mesh.h"
 
 namespace subfab::detail {
@@ -49,5 +50,17 @@ struct SinglePrecisionCleanup {
 //! field), since a merge moves the block's vertex too.
 SinglePrecisionCleanup clean_single_precision(Mesh& machine, Mesh& block, const Eigen::Matrix3d* to_machine = nullptr,
                                               const std::function<bool(const Mesh&)>& block_valid = {});
+
+//! Export's float32 step for one finished block (`block`, input frame, as
+//! finalize_blocks() makes it; `machine`, its twin in machine coordinates,
+//! `to_machine` the rotation between them): clean_single_precision() with
+//! a repair kept only when the block then passes block_defect() along
+//! `direction` (its unit milling direction, input frame) with `diagonal`
+//! (the decomposed input's, as finalize_blocks() checks) and `options`.
+//! export_decomposition() writes what this makes, and decompose() vets the
+//! blocks its merges make with it, so that a merge kept there cannot have
+//! its STL refused at export.
+SinglePrecisionCleanup clean_block_for_stl(Mesh& machine, Mesh& block, const Eigen::Matrix3d& to_machine,
+                                           const Vec3& direction, double diagonal, const FinalizeOptions& options);
 
 }  // namespace subfab::detail

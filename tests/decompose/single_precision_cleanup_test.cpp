@@ -114,7 +114,9 @@ struct CleanedBlock {
   detail::SinglePrecisionCleanup result;
 };
 
-//! With `checked`, the cleanup is given export's check of the block (block_defect()).
+//! With `checked`, the cleanup is export's own (clean_block_for_stl(): a
+//! repair kept only when the block passes block_defect()), the one decompose's
+//! merge checks call too.
 CleanedBlock clean_regression_block(const std::string& file, Axis axis, bool checked = false) {
   CleanedBlock c;
   c.original = read_mesh(test::data_path("regression/" + file));
@@ -123,10 +125,9 @@ CleanedBlock clean_regression_block(const std::string& file, Axis axis, bool che
   c.machine = machine_mesh_of(c.block, axis, Eigen::Matrix3d::Identity());
   EXPECT_FALSE(check_single_precision(c.machine).ok()) << file << " is already a solid in float32";
   const double diagonal = bounding_box(c.original).diagonal();
-  std::function<bool(const Mesh&)> valid;
-  if (checked)
-    valid = [axis, diagonal](const Mesh& b) { return block_defect(b, axis_direction(axis), diagonal).empty(); };
-  c.result = detail::clean_single_precision(c.machine, c.block, &c.to_machine, valid);
+  c.result = checked ? detail::clean_block_for_stl(c.machine, c.block, c.to_machine, axis_direction(axis), diagonal,
+                                                   FinalizeOptions{})
+                     : detail::clean_single_precision(c.machine, c.block, &c.to_machine);
   return c;
 }
 
