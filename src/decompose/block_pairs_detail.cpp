@@ -5,6 +5,8 @@
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
 
 #include "geometry/deterministic_arena.h"
+#include "subfab/validate/validate_decomposition.h"
+#include "validate/validate_booleans.h"
 
 namespace subfab::detail {
 
@@ -37,6 +39,24 @@ bool within_limits(const BoundingBox& box, Axis axis, double max_height, const V
   const double a = size[(k + 1) % 3], b = size[(k + 2) % 3];
   if (h > max_height || h > machine_size.z()) return false;
   return (a <= machine_size.x() && b <= machine_size.y()) || (a <= machine_size.y() && b <= machine_size.x());
+}
+
+bool overlaps_a_block(const Mesh& m, const std::vector<Block>& blocks, const std::vector<BoundingBox>& boxes,
+                      const std::vector<double>& volumes, const std::function<bool(std::size_t)>& skip,
+                      double tolerance) {
+  const BoundingBox box = bounding_box(m);
+  const double volume = signed_volume(m);
+  for (std::size_t k = 0; k < blocks.size(); ++k) {
+    if ((skip && skip(k)) || !interiors_meet(box, boxes[k])) continue;
+    const double allowed = tolerance * std::min(volume, volumes[k]);
+    if (overlap_volume_bound(m, blocks[k].mesh, Eigen::Matrix3d::Identity()) <= allowed) continue;
+    try {
+      if (exact_blocks_overlap(m, blocks[k].mesh) > allowed) return true;
+    } catch (const std::exception&) {
+      return true;
+    }
+  }
+  return false;
 }
 
 std::optional<Mesh> exact_block_union(const Mesh& a, const Mesh& b,

@@ -32,6 +32,15 @@ std::vector<double> block_volumes(const std::vector<Block>& blocks);
 //! extents within machine_size.x() and .y() (either way round)? Model units.
 bool within_limits(const BoundingBox& box, Axis axis, double max_height, const Vec3& machine_size);
 
+//! Does the block mesh `m` overlap one of `blocks` (those `skip` does not
+//! exclude; `boxes` and `volumes` theirs) by more than `tolerance` x the
+//! smaller volume? A bound from the boxes first (overlap_volume_bound()),
+//! then the exact volume (validate's overlap check); an exact boolean that
+//! fails counts as an overlap.
+bool overlaps_a_block(const Mesh& m, const std::vector<Block>& blocks, const std::vector<BoundingBox>& boxes,
+                      const std::vector<double>& volumes, const std::function<bool(std::size_t)>& skip,
+                      double tolerance);
+
 //! The union of blocks a and b, computed exactly (CGAL corefinement on the
 //! exact kernel, in a private DeterministicArena) and rounded to doubles
 //! (how that went in `rounding`), when it is non-empty, `accept` (if set)

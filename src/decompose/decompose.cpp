@@ -35,6 +35,8 @@
 #include "subfab/decompose/orient_mesh.h"
 #include "subfab/decompose/remove_slivers.h"
 #include "subfab/validate/find_slivers.h"
+#include "subfab/validate/measure_fill_deviation.h"
+#include "subfab/validate/milled_shape.h"
 #include "subfab/decompose/resolve_overlaps.h"
 #include "subfab/decompose/select_cover.h"
 #include "subfab/decompose/snap_and_shrink.h"
@@ -602,6 +604,112 @@ bool replace_failed_blocks(const Mesh& solid, const std::vector<Block>& round_ca
   return true;
 }
 
+//! Blocks of `piece`, the union of sliver `s` and its neighbour `j` (both
+//! in `blocks`), decomposed again within the tolerance T = result.tolerance
+//! > 0 (recarve_slivers(); issue 17, "no slivers"): their exact
+//! re-decomposition gives the sliver back where the carve's box planes stay
+//! where they were (elephant.off, turbine.off at 1e-3). Under the piece's
+//! own allowances at each depth fraction in turn (the largest first;
+//! stages 2-6 on the piece, then merge_blocks() with `mo`), each block is
+//! replaced by its milled shape, and the first level is kept whose blocks
+//! are at most two, none a sliver (`min_thickness`), each milled shape a
+//! closed height field that keeps the model within T of `solid`
+//! (FillDeviationMeter: measure + error <= T, with the blocks that stick
+//! out; only measured where it adds material or the pair stuck out),
+//! overlaps no other block (validate's exact volume check, 1e-6) and passes
+//! `defect` (the export's check). `filled`: per block, 1 where it sticks
+//! out of the solid; `bound`: the largest measured deviation (model units).
+struct WithinParts {
+  std::vector<Block> blocks;
+  std::vector<char> filled;
+  double bound = 0.0;
+};
+std::optional<WithinParts> recarve_within(const Mesh& solid, const Mesh& piece, const Mesh& input,
+                                          const DecomposeOptions& quiet, const DecomposeResult& result,
+                                          const std::vector<Block>& blocks, const std::vector<char>& alive,
+                                          const std::vector<char>& sticks_out, std::size_t s, std::size_t j,
+                                          double min_thickness, const MergeOptions& mo,
+                                          const std::function<std::string(const Block&)>& defect) {
+  const double tolerance = result.tolerance;
+  const std::vector<double>& fractions = quiet.tolerance_depth_fractions;
+  const bool pair_out = sticks_out[s] || sticks_out[j];
+  const auto skip = [&](std::size_t k) { return k == s || k == j || !alive[k]; };
+  const std::vector<BoundingBox> boxes = detail::block_boxes(blocks);
+  const std::vector<double> volumes = detail::block_volumes(blocks);
+  std::vector<const Mesh*> sticking;  // the blocks the meter's model adds to the input
+  for (std::size_t k = 0; k < blocks.size(); ++k)
+    if (!skip(k) && sticks_out[k]) sticking.push_back(&blocks[k].mesh);
+  const FillDeviationMeter meter(solid);
+  for (std::size_t level = 0; level < fractions.size(); ++level) {
+    DecomposeResult sub;
+    sub.max_height = result.max_height;
+    sub.max_overhang_deg = result.max_overhang_deg;
+    sub.tolerance = tolerance;
+    std::vector<Block> parts;
+    try {
+      const auto l = static_cast<std::uint8_t>(level);
+      const std::vector<std::array<std::uint8_t, 3>> levels(piece.num_faces(), std::array<std::uint8_t, 3>{l, l, l});
+      const OverhangAllowances allowed = allowances_with_floors(piece, depths_within(piece, quiet, sub), levels,
+                                                                fractions, tolerance, quiet.tolerance_floor_scale);
+      if (count_allowed_faces(allowed.bits) == 0) break;  // none at a smaller fraction either: the exact carve
+      parts = merge_blocks(carve_stages(piece, &allowed, input, quiet, sub, /*input_spacing=*/true), mo).blocks;
+    } catch (const std::exception&) {
+      continue;
+    }
+    if (parts.empty() || parts.size() > 2) continue;
+    WithinParts w;
+    bool ok = true;
+    for (const Block& p : parts) {
+      MilledShape m;
+      try {
+        m = milled_shape(p.mesh, axis_direction(p.axis));
+      } catch (const std::exception&) {
+        ok = false;
+        break;
+      }
+      if (m.is_block) {
+        w.blocks.push_back(p);
+        w.filled.push_back(static_cast<char>(pair_out));
+        continue;
+      }
+      if (!check_closed_solid(m.mesh).ok() || !is_height_field(m.mesh, axis_direction(p.axis))) {
+        ok = false;
+        break;
+      }
+      w.blocks.push_back(Block{std::move(m.mesh), p.axis, p.source_box});
+      w.filled.push_back(1);
+    }
+    if (!ok) continue;
+    const std::vector<char> thin = sliver_flags(solid, w.blocks, min_thickness);
+    if (std::any_of(thin.begin(), thin.end(), [](char c) { return c != 0; })) continue;
+    const FillDeviationOptions fo{.reach = tolerance, .error = 0.05 * tolerance};
+    for (std::size_t i = 0; i < w.blocks.size() && ok; ++i) {
+      const Block& b = w.blocks[i];
+      if (defect && !defect(b).empty()) ok = false;
+      if (!ok || !w.filled[i]) continue;  // an exact block inside the piece: nothing added, nothing to collide with
+      std::vector<const Mesh*> others = sticking;
+      for (std::size_t o = 0; o < w.blocks.size(); ++o)
+        if (o != i && w.filled[o]) others.push_back(&w.blocks[o].mesh);
+      std::optional<std::vector<BoundingBox>> fill;
+      if (!pair_out && b.mesh.num_faces() > 0) fill = fill_columns(parts[i].mesh, b.mesh, b.axis);
+      const FillDeviation dev = fill ? meter.measure_fill(b.mesh, others, *fill, fo) : meter.measure(b.mesh, others, fo);
+      if (!dev.failure.empty() || !(dev.bound() <= tolerance)) {
+        ok = false;
+        continue;
+      }
+      w.bound = std::max(w.bound, dev.bound());
+      ok = !detail::overlaps_a_block(b.mesh, blocks, boxes, volumes, skip, MillToleranceOptions{}.collision_tolerance);
+      if (ok && w.blocks.size() == 2) {  // and the other new block
+        const std::vector<Block> other{w.blocks[1 - i]};
+        ok = !detail::overlaps_a_block(b.mesh, other, detail::block_boxes(other), detail::block_volumes(other), {},
+                                       MillToleranceOptions{}.collision_tolerance);
+      }
+    }
+    if (ok) return w;
+  }
+  return std::nullopt;
+}
+
 //! Step 9c of decompose() (issue 17, "No slivers"; at any tolerance): a
 //! sliver the sliver stage left (no drop, merge or split within T) is
 //! decomposed again together with one block it touches, the largest first
@@ -612,10 +720,15 @@ bool replace_failed_blocks(const Mesh& solid, const std::vector<Block>& round_ca
 //! the model made, its deviation and the overlaps stay as they were (up to
 //! the cleanup's 1e-10 x scale); the pair is replaced when that gives at
 //! most two blocks, none a sliver (sliver_flags(), validate's rule) and
-//! each passing the export's check `defect`. A new block sticks out of the
-//! solid when one of the pair did (`filled`, per block, follows when it has
-//! one entry per block; else left empty). Returns the number of slivers
-//! removed; result.blocks and `filled` updated. Timed by the caller.
+//! each passing the export's check `defect`. Within a tolerance (T > 0),
+//! when the exact blocks are not kept, the union is decomposed again under
+//! its own allowances (recarve_within(): milled, measured within T, checked
+//! for collisions; its deviation bound raises result.deviation_bound). A
+//! new block sticks out of the solid when one of the pair did or its milled
+//! shape adds material (`filled`, per block, follows when it has one entry
+//! per block or a new block sticks out; else left empty). Returns the
+//! number of slivers removed; result.blocks and `filled` updated. Timed by
+//! the caller.
 std::size_t recarve_slivers(const Mesh& solid, const Mesh& input, const DecomposeOptions& options,
                             DecomposeResult& result, std::vector<char>& filled, double min_thickness,
                             const std::function<std::string(const Block&)>& defect, std::size_t max_neighbours = 4) {
@@ -623,7 +736,8 @@ std::size_t recarve_slivers(const Mesh& solid, const Mesh& input, const Decompos
   DecomposeOptions quiet = options;
   quiet.progress = nullptr;
   std::vector<Block>& blocks = result.blocks;
-  const bool track_filled = filled.size() == blocks.size();  // else (T = 0) none sticks out, `filled` stays empty
+  const bool track_filled = filled.size() == blocks.size();  // else none sticks out yet: `filled` stays empty
+                                                             // unless a block made within T does
   std::vector<char> sticks_out = track_filled ? filled : std::vector<char>(blocks.size(), 0);
   const std::size_t n0 = blocks.size();
   const std::vector<char> sliver = sliver_flags(solid, blocks, min_thickness);
@@ -657,45 +771,63 @@ std::size_t recarve_slivers(const Mesh& solid, const Mesh& input, const Decompos
       sub.max_height = result.max_height;
       sub.max_overhang_deg = result.max_overhang_deg;
       sub.tolerance = result.tolerance;
+      MergeOptions mo;
+      mo.max_height = result.max_height;
+      mo.machine_size = options.machine ? *options.machine : Vec3::Constant(std::numeric_limits<double>::infinity());
+      mo.max_overhang_deg = result.max_overhang_deg;
+      Mesh piece = std::move(*u);
+      bool feasible = false;
       try {
-        Mesh piece = std::move(*u);
         clean_rounded_block(piece, axis_direction(blocks[j].axis),
                             FinalizeOptions{}.relative_tolerance * rounding_scale(solid));
         require_closed_solid_result(piece, "the union of a sliver and its neighbour is not a clean solid: ");
-        if (find_infeasible_features(piece).feasible()) {
-          std::vector<Block> carved = carve_stages(piece, nullptr, input, quiet, sub, /*input_spacing=*/true);
-          MergeOptions mo;
-          mo.max_height = result.max_height;
-          mo.machine_size = options.machine ? *options.machine : Vec3::Constant(std::numeric_limits<double>::infinity());
-          mo.max_overhang_deg = result.max_overhang_deg;
-          parts = merge_blocks(std::move(carved), mo).blocks;
-        }
+        feasible = find_infeasible_features(piece).feasible();
+        if (feasible) parts = merge_blocks(carve_stages(piece, nullptr, input, quiet, sub, /*input_spacing=*/true), mo).blocks;
       } catch (const std::exception& e) {  // this pair cannot be decomposed again: the next neighbour
         parts.clear();
         rejected(std::string("not decomposed again (") + e.what() + ")");
-      }
-      if (parts.empty()) continue;
-      if (parts.size() > 2) {
-        rejected(std::to_string(parts.size()) + " blocks exactly (at most 2 kept)");
         continue;
       }
-      const std::vector<char> thin = sliver_flags(solid, parts, min_thickness);
-      if (std::any_of(thin.begin(), thin.end(), [](char c) { return c != 0; })) {
-        rejected(std::to_string(parts.size()) + " block(s) exactly, one a sliver still");
-        continue;
+      std::string why;  // why the exact blocks are not kept
+      if (parts.empty()) {
+        why = "no exact blocks";
+      } else if (parts.size() > 2) {
+        why = std::to_string(parts.size()) + " blocks exactly (at most 2 kept)";
+      } else {
+        const std::vector<char> thin = sliver_flags(solid, parts, min_thickness);
+        if (std::any_of(thin.begin(), thin.end(), [](char c) { return c != 0; }))
+          why = std::to_string(parts.size()) + " block(s) exactly, one a sliver still";
+        else if (defect && std::any_of(parts.begin(), parts.end(), [&](const Block& b) { return !defect(b).empty(); }))
+          why = "a block fails the export's check";
       }
-      if (defect && std::any_of(parts.begin(), parts.end(), [&](const Block& b) { return !defect(b).empty(); })) {
-        rejected("a block fails the export's check");
+      std::vector<char> parts_out(parts.size(), static_cast<char>(sticks_out[s] | sticks_out[j]));
+      std::string how = "exactly";
+      if (!why.empty() && result.tolerance > 0) {
+        // within the tolerance: the piece's own allowances, the milled shapes measured
+        std::optional<WithinParts> w = recarve_within(solid, piece, input, quiet, result, blocks, alive, sticks_out, s,
+                                                      j, min_thickness, mo, defect);
+        if (w) {
+          parts = std::move(w->blocks);
+          parts_out = std::move(w->filled);
+          result.deviation_bound = std::max(result.deviation_bound, w->bound);
+          how = "within the tolerance (deviation bound " + std::to_string(w->bound / result.tolerance) + " T)";
+          why.clear();
+        } else {
+          why += "; within the tolerance: no level gives at most 2 blocks, none a sliver, within T";
+        }
+      }
+      if (!why.empty()) {
+        rejected(why);
         continue;
       }
       if (progress)
         progress->info("sliver block " + std::to_string(s + 1) + " and its neighbour " + std::to_string(j + 1) +
-                       " decomposed again together, exactly: " + std::to_string(parts.size()) + " block(s), no sliver");
-      const char f = static_cast<char>(sticks_out[s] | sticks_out[j]);
+                       " decomposed again together, " + how + ": " + std::to_string(parts.size()) +
+                       " block(s), no sliver");
       alive[s] = alive[j] = 0;
-      for (Block& b : parts) {
-        blocks.push_back(std::move(b));
-        sticks_out.push_back(f);
+      for (std::size_t p = 0; p < parts.size(); ++p) {
+        blocks.push_back(std::move(parts[p]));
+        sticks_out.push_back(parts_out[p]);
         alive.push_back(1);
       }
       ++removed;
@@ -711,7 +843,9 @@ std::size_t recarve_slivers(const Mesh& solid, const Mesh& input, const Decompos
       kept_filled.push_back(sticks_out[i]);
     }
   blocks = std::move(kept);
-  if (track_filled) filled = std::move(kept_filled);
+  // a block made within the tolerance may stick out where none did before
+  if (track_filled || std::any_of(kept_filled.begin(), kept_filled.end(), [](char c) { return c != 0; }))
+    filled = std::move(kept_filled);
   return removed;
 }
 

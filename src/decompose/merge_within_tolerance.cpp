@@ -18,7 +18,6 @@
 #include "subfab/validate/measure_fill_deviation.h"
 #include "subfab/validate/milled_shape.h"
 #include "subfab/validate/validate_decomposition.h"
-#include "validate/validate_booleans.h"
 
 namespace subfab {
 namespace {
@@ -201,22 +200,8 @@ std::optional<Candidate> evaluate(std::size_t i, std::size_t j, const State& s, 
       why |= kDeviation;
       continue;
     }
-    const BoundingBox mbox = bounding_box(m);
-    const double volume = signed_volume(m);
-    bool collides = false;
-    for (std::size_t k = 0; k < s.blocks.size() && !collides; ++k) {
-      if (k == i || k == j || !detail::interiors_meet(mbox, s.boxes[k])) continue;
-      if (overlap_volume_bound(m, s.blocks[k].mesh, Eigen::Matrix3d::Identity()) <=
-          o.collision_tolerance * std::min(volume, s.volumes[k]))
-        continue;
-      try {
-        collides = detail::exact_blocks_overlap(m, s.blocks[k].mesh) >
-                   o.collision_tolerance * std::min(volume, s.volumes[k]);
-      } catch (const std::exception&) {
-        collides = true;
-      }
-    }
-    if (collides) {
+    if (detail::overlaps_a_block(m, s.blocks, s.boxes, s.volumes, [&](std::size_t k) { return k == i || k == j; },
+                                 o.collision_tolerance)) {
       why |= kCollision;
       continue;
     }
