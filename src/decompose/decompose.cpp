@@ -619,6 +619,7 @@ bool replace_failed_blocks(const Mesh& solid, const std::vector<Block>& round_ca
 //! overlaps no other block (validate's exact volume check, 1e-6) and passes
 //! `defect` (the export's check). `filled`: per block, 1 where it sticks
 //! out of the solid; `bound`: the largest measured deviation (model units).
+//! `why` receives what each level failed on (for the log).
 struct WithinParts {
   std::vector<Block> blocks;
   std::vector<char> filled;
@@ -629,7 +630,7 @@ std::optional<WithinParts> recarve_within(const Mesh& solid, const Mesh& piece, 
                                           const std::vector<Block>& blocks, const std::vector<char>& alive,
                                           const std::vector<char>& sticks_out, std::size_t s, std::size_t j,
                                           double min_thickness, const MergeOptions& mo,
-                                          const std::function<std::string(const Block&)>& defect) {
+                                          const std::function<std::string(const Block&)>& defect, std::string& why) {
   const double tolerance = result.tolerance;
   const std::vector<double>& fractions = quiet.tolerance_depth_fractions;
   const bool pair_out = sticks_out[s] || sticks_out[j];
@@ -646,6 +647,9 @@ std::optional<WithinParts> recarve_within(const Mesh& solid, const Mesh& piece, 
     sub.max_overhang_deg = result.max_overhang_deg;
     sub.tolerance = tolerance;
     std::vector<Block> parts;
+    const auto failed = [&](const std::string& what) {
+      why += (why.empty() ? "" : ", ") + std::string("at ") + std::to_string(fractions[level]) + " T " + what;
+    };
     try {
       const auto l = static_cast<std::uint8_t>(level);
       const std::vector<std::array<std::uint8_t, 3>> levels(piece.num_faces(), std::array<std::uint8_t, 3>{l, l, l});
@@ -653,10 +657,14 @@ std::optional<WithinParts> recarve_within(const Mesh& solid, const Mesh& piece, 
                                                                 fractions, tolerance, quiet.tolerance_floor_scale);
       if (count_allowed_faces(allowed.bits) == 0) break;  // none at a smaller fraction either: the exact carve
       parts = merge_blocks(carve_stages(piece, &allowed, input, quiet, sub, /*input_spacing=*/true), mo).blocks;
-    } catch (const std::exception&) {
+    } catch (const std::exception& e) {
+      failed(std::string("failed (") + e.what() + ")");
       continue;
     }
-    if (parts.empty() || parts.size() > 2) continue;
+    if (parts.empty() || parts.size() > 2) {
+      failed(std::to_string(parts.size()) + " blocks");
+      continue;
+    }
     WithinParts w;
     bool ok = true;
     for (const Block& p : parts) {
@@ -679,13 +687,22 @@ std::optional<WithinParts> recarve_within(const Mesh& solid, const Mesh& piece, 
       w.blocks.push_back(Block{std::move(m.mesh), p.axis, p.source_box});
       w.filled.push_back(1);
     }
-    if (!ok) continue;
+    if (!ok) {
+      failed("a milled shape that is no closed height field");
+      continue;
+    }
     const std::vector<char> thin = sliver_flags(solid, w.blocks, min_thickness);
-    if (std::any_of(thin.begin(), thin.end(), [](char c) { return c != 0; })) continue;
+    if (std::any_of(thin.begin(), thin.end(), [](char c) { return c != 0; })) {
+      failed(std::to_string(w.blocks.size()) + " blocks, one a sliver");
+      continue;
+    }
     const FillDeviationOptions fo{.reach = tolerance, .error = 0.05 * tolerance};
     for (std::size_t i = 0; i < w.blocks.size() && ok; ++i) {
       const Block& b = w.blocks[i];
-      if (defect && !defect(b).empty()) ok = false;
+      if (defect && !defect(b).empty()) {
+        failed("a block failing the export's check");
+        ok = false;
+      }
       if (!ok || !w.filled[i]) continue;  // an exact block inside the piece: nothing added, nothing to collide with
       std::vector<const Mesh*> others = sticking;
       for (std::size_t o = 0; o < w.blocks.size(); ++o)
@@ -694,6 +711,8 @@ std::optional<WithinParts> recarve_within(const Mesh& solid, const Mesh& piece, 
       if (!pair_out && b.mesh.num_faces() > 0) fill = fill_columns(parts[i].mesh, b.mesh, b.axis);
       const FillDeviation dev = fill ? meter.measure_fill(b.mesh, others, *fill, fo) : meter.measure(b.mesh, others, fo);
       if (!dev.failure.empty() || !(dev.bound() <= tolerance)) {
+        failed(dev.failure.empty() ? "a milled shape " + std::to_string(dev.bound() / tolerance) + " T from the input"
+                                   : "a deviation not measured (" + dev.failure + ")");
         ok = false;
         continue;
       }
@@ -704,6 +723,7 @@ std::optional<WithinParts> recarve_within(const Mesh& solid, const Mesh& piece, 
         ok = !detail::overlaps_a_block(b.mesh, other, detail::block_boxes(other), detail::block_volumes(other), {},
                                        MillToleranceOptions{}.collision_tolerance);
       }
+      if (!ok) failed("a milled shape overlapping another block");
     }
     if (ok) return w;
   }
@@ -804,8 +824,9 @@ std::size_t recarve_slivers(const Mesh& solid, const Mesh& input, const Decompos
       std::string how = "exactly";
       if (!why.empty() && result.tolerance > 0) {
         // within the tolerance: the piece's own allowances, the milled shapes measured
+        std::string within_why;
         std::optional<WithinParts> w = recarve_within(solid, piece, input, quiet, result, blocks, alive, sticks_out, s,
-                                                      j, min_thickness, mo, defect);
+                                                      j, min_thickness, mo, defect, within_why);
         if (w) {
           parts = std::move(w->blocks);
           parts_out = std::move(w->filled);
@@ -813,7 +834,7 @@ std::size_t recarve_slivers(const Mesh& solid, const Mesh& input, const Decompos
           how = "within the tolerance (deviation bound " + std::to_string(w->bound / result.tolerance) + " T)";
           why.clear();
         } else {
-          why += "; within the tolerance: no level gives at most 2 blocks, none a sliver, within T";
+          why += "; within the tolerance: " + (within_why.empty() ? std::string("no face may lean") : within_why);
         }
       }
       if (!why.empty()) {
