@@ -810,7 +810,7 @@ std::size_t recarve_slivers(const Mesh& solid, const Mesh& input, const Decompos
       }
       std::string why;  // why the exact blocks are not kept
       if (parts.empty()) {
-        why = "no exact blocks";
+        why = feasible ? "no exact blocks" : "their union holds a crease or spike no exact block covers";
       } else if (parts.size() > 2) {
         why = std::to_string(parts.size()) + " blocks exactly (at most 2 kept)";
       } else {
