@@ -318,22 +318,38 @@ std::size_t lower_allowances(const Mesh& solid, const MillToleranceResult& mille
   return lowered;
 }
 
+//! Stage 7's options (merge_blocks()): the run's height limit, machine and
+//! overhang allowance; shared by the stage and by step 9c's merges of a
+//! piece decomposed again.
+MergeOptions merge_options(const DecomposeOptions& options, const DecomposeResult& result) {
+  MergeOptions mo;
+  mo.max_height = result.max_height;
+  mo.machine_size = options.machine ? *options.machine : Vec3::Constant(std::numeric_limits<double>::infinity());
+  mo.max_overhang_deg = result.max_overhang_deg;
+  return mo;
+}
+
+//! The result a piece decomposed again on its own (carve_stages()) starts
+//! from: the run's height limit and overhang allowance, tolerance `tolerance`.
+DecomposeResult piece_result(const DecomposeResult& result, double tolerance) {
+  DecomposeResult sub;
+  sub.max_height = result.max_height;
+  sub.max_overhang_deg = result.max_overhang_deg;
+  sub.tolerance = tolerance;
+  return sub;
+}
+
 //! Stage 7 of decompose(): exact merges of touching blocks (4.3.4
 //! post-processing) into result.blocks; `filled` (per block, may be empty)
 //! follows the merges.
 void merge_stage(std::vector<Block> blocks, std::vector<char>& filled, const DecomposeOptions& options,
                  DecomposeResult& result) {
   Progress* progress = options.progress;
-  const Vec3 machine = options.machine ? *options.machine : Vec3::Constant(std::numeric_limits<double>::infinity());
-  const double overhang = options.max_overhang_deg;
   {
     StageScope stage(progress, "merge");
     const auto t = Clock::now();
     if (options.merge) {
-      MergeOptions mo;
-      mo.max_height = result.max_height;
-      mo.machine_size = machine;
-      mo.max_overhang_deg = overhang;
+      MergeOptions mo = merge_options(options, result);
       mo.progress = progress;
       MergeResult merged = merge_blocks(std::move(blocks), mo);
       result.blocks = std::move(merged.blocks);
@@ -533,10 +549,7 @@ bool replace_failed_blocks(const Mesh& solid, const std::vector<Block>& round_ca
       std::vector<Block> parts;
       int part_level = 2;
       if (why.empty()) {
-        DecomposeResult sub;
-        sub.max_height = result.max_height;
-        sub.max_overhang_deg = result.max_overhang_deg;
-        sub.tolerance = result.tolerance;
+        DecomposeResult sub = piece_result(result, result.tolerance);
         try {
           OverhangAllowances allowed;
           if (level[i] == 0) {
@@ -642,10 +655,7 @@ std::optional<WithinParts> recarve_within(const Mesh& solid, const Mesh& piece, 
     if (!skip(k) && sticks_out[k]) sticking.push_back(&blocks[k].mesh);
   const FillDeviationMeter meter(solid);
   for (std::size_t level = 0; level < fractions.size(); ++level) {
-    DecomposeResult sub;
-    sub.max_height = result.max_height;
-    sub.max_overhang_deg = result.max_overhang_deg;
-    sub.tolerance = tolerance;
+    DecomposeResult sub = piece_result(result, tolerance);
     std::vector<Block> parts;
     const auto failed = [&](const std::string& what) {
       why += (why.empty() ? "" : ", ") + std::string("at ") + std::to_string(fractions[level]) + " T " + what;
@@ -787,14 +797,8 @@ std::size_t recarve_slivers(const Mesh& solid, const Mesh& input, const Decompos
         continue;
       }
       std::vector<Block> parts;
-      DecomposeResult sub;
-      sub.max_height = result.max_height;
-      sub.max_overhang_deg = result.max_overhang_deg;
-      sub.tolerance = result.tolerance;
-      MergeOptions mo;
-      mo.max_height = result.max_height;
-      mo.machine_size = options.machine ? *options.machine : Vec3::Constant(std::numeric_limits<double>::infinity());
-      mo.max_overhang_deg = result.max_overhang_deg;
+      DecomposeResult sub = piece_result(result, result.tolerance);
+      const MergeOptions mo = merge_options(options, result);
       Mesh piece = std::move(*u);
       bool feasible = false;
       try {
