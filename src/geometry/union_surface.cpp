@@ -36,9 +36,17 @@ Corners corners(const ExactMesh& m, FaceIndex f) {
 
 ExactKernel::Vector_3 normal(const Corners& t) { return CGAL::cross_product(t.b - t.a, t.c - t.a); }
 
-}  // namespace
+//! How a face of one operand lies against another operand.
+enum class Side { Outside, Inside, OnSameWay, OnOppositeWay, Unknown };
 
-bool union_surface(std::vector<ExactMesh>& operands, std::vector<std::pair<std::size_t, FaceIndex>>& kept) {
+//! Which faces of the corefined operands bound the result.
+enum class Operation { Union, Difference };
+
+//! The shared body of union_surface() and difference_surface(): corefines
+//! the operands, classifies one face per patch against every other operand
+//! and keeps the faces `operation`'s rule keeps (see union_surface.h).
+bool boolean_surface(std::vector<ExactMesh>& operands, Operation operation,
+                     std::vector<std::pair<std::size_t, FaceIndex>>& kept) {
   kept.clear();
   const std::size_t m = operands.size();
   for (const ExactMesh& o : operands)
@@ -84,57 +92,68 @@ bool union_surface(std::vector<ExactMesh>& operands, std::vector<std::pair<std::
     const std::vector<std::size_t>& o = owners.at(p);
     return std::binary_search(o.begin(), o.end(), b);
   };
+  // Face f of O_a against O_b.
+  auto side_of = [&](const Corners& t, std::optional<ExactPoint>& centroid, std::size_t b) -> Side {
+    // A corner of f that is not a vertex of O_b lies off ∂O_b (the
+    // corefinement made every point of O_a on ∂O_b a vertex of both), and
+    // f's interior is on its side (no point of the open face or of the
+    // open edges from that corner is on ∂O_b, for the same reason): that
+    // corner is classified (input or once-constructed coordinates: far
+    // cheaper exactly than a centroid of constructed points, issue 17).
+    const ExactPoint* corner = nullptr;
+    for (const ExactPoint* q : {&t.a, &t.b, &t.c})
+      if (!is_vertex_of(*q, b)) {
+        corner = q;
+        break;
+      }
+    if (corner) {
+      if (!CGAL::do_overlap(corner->bbox(), box[b])) return Side::Outside;
+      const CGAL::Bounded_side side = (*sides[b])(*corner);
+      if (side == CGAL::ON_BOUNDED_SIDE) return Side::Inside;
+      if (side == CGAL::ON_BOUNDARY) return Side::Unknown;  // cannot happen after a correct corefinement
+      return Side::Outside;
+    }
+    if (!centroid) centroid = CGAL::centroid(t.a, t.b, t.c);
+    const ExactPoint& p = *centroid;
+    if (!CGAL::do_overlap(p.bbox(), box[b])) return Side::Outside;
+    // on ∂O_b? Then f lies in a coplanar face g of O_b (after the
+    // corefinement nothing else can hold its interior point). Asked first:
+    // a ray from a point on ∂O_b makes the side test's predicates exact.
+    std::vector<Tree::Primitive_id> under;
+    trees[b]->all_intersected_primitives(p, std::back_inserter(under));
+    for (FaceIndex g : under) {
+      const Corners u = corners(given[b], g);  // the given face holding f's refined copy
+      if (CGAL::orientation(u.a, u.b, u.c, t.a) != CGAL::COPLANAR ||
+          CGAL::orientation(u.a, u.b, u.c, t.b) != CGAL::COPLANAR ||
+          CGAL::orientation(u.a, u.b, u.c, t.c) != CGAL::COPLANAR)
+        continue;
+      return CGAL::sign(normal(t) * normal(u)) > 0 ? Side::OnSameWay : Side::OnOppositeWay;
+    }
+    if (!under.empty()) return Side::Unknown;
+    const CGAL::Bounded_side side = (*sides[b])(p);
+    if (side == CGAL::ON_BOUNDED_SIDE) return Side::Inside;
+    if (side == CGAL::ON_BOUNDARY) return Side::Unknown;
+    return Side::Outside;
+  };
   // 1 keep, 0 drop, -1 no coplanar face under a face on another operand's boundary
   auto classify = [&](std::size_t a, FaceIndex f) -> char {
     const Corners t = corners(operands[a], f);
     std::optional<ExactPoint> centroid;
+    if (operation == Operation::Difference) {
+      // ∂(O_0 \ O_1): O_0's faces outside O_1, or on ∂O_1 facing the other
+      // way (O_0 lies outside O_1 there); O_1's faces inside O_0 (on ∂O_0
+      // they are O_0's faces already, or no boundary).
+      const Side s = side_of(t, centroid, 1 - a);
+      if (s == Side::Unknown) return -1;
+      if (a == 0) return s == Side::Outside || s == Side::OnOppositeWay ? 1 : 0;
+      return s == Side::Inside ? 1 : 0;
+    }
     for (std::size_t b = 0; b < m; ++b) {
       if (b == a) continue;
-      // A corner of f that is not a vertex of O_b lies off ∂O_b (the
-      // corefinement made every point of O_a on ∂O_b a vertex of both), and
-      // f's interior is on its side (no point of the open face or of the
-      // open edges from that corner is on ∂O_b, for the same reason): that
-      // corner is classified (input or once-constructed coordinates: far
-      // cheaper exactly than a centroid of constructed points, issue 17).
-      const ExactPoint* corner = nullptr;
-      for (const ExactPoint* q : {&t.a, &t.b, &t.c})
-        if (!is_vertex_of(*q, b)) {
-          corner = q;
-          break;
-        }
-      if (corner) {
-        if (!CGAL::do_overlap(corner->bbox(), box[b])) continue;
-        const CGAL::Bounded_side side = (*sides[b])(*corner);
-        if (side == CGAL::ON_BOUNDED_SIDE) return 0;
-        if (side == CGAL::ON_BOUNDARY) return -1;  // cannot happen after a correct corefinement
-        continue;
-      }
-      if (!centroid) centroid = CGAL::centroid(t.a, t.b, t.c);
-      const ExactPoint& p = *centroid;
-      if (!CGAL::do_overlap(p.bbox(), box[b])) continue;
-      // on ∂O_b? Then f lies in a coplanar face g of O_b (after the
-      // corefinement nothing else can hold its interior point). Asked first:
-      // a ray from a point on ∂O_b makes the side test's predicates exact.
-      std::vector<Tree::Primitive_id> under;
-      trees[b]->all_intersected_primitives(p, std::back_inserter(under));
-      int facing = 0;  // +1 same way, -1 opposite
-      for (FaceIndex g : under) {
-        const Corners u = corners(given[b], g);  // the given face holding f's refined copy
-        if (CGAL::orientation(u.a, u.b, u.c, t.a) != CGAL::COPLANAR ||
-            CGAL::orientation(u.a, u.b, u.c, t.b) != CGAL::COPLANAR ||
-            CGAL::orientation(u.a, u.b, u.c, t.c) != CGAL::COPLANAR)
-          continue;
-        facing = CGAL::sign(normal(t) * normal(u)) > 0 ? 1 : -1;
-        break;
-      }
-      if (facing == 0) {
-        if (!under.empty()) return -1;
-        const CGAL::Bounded_side side = (*sides[b])(p);
-        if (side == CGAL::ON_BOUNDED_SIDE) return 0;
-        if (side == CGAL::ON_BOUNDARY) return -1;
-        continue;
-      }
-      if (facing < 0 || b < a) return 0;
+      const Side s = side_of(t, centroid, b);
+      if (s == Side::Unknown) return -1;
+      if (s == Side::Inside || s == Side::OnOppositeWay) return 0;
+      if (s == Side::OnSameWay && b < a) return 0;  // one copy of a shared face
     }
     return 1;
   };
@@ -180,6 +199,17 @@ bool union_surface(std::vector<ExactMesh>& operands, std::vector<std::pair<std::
     }
   }
   return true;
+}
+
+}  // namespace
+
+bool union_surface(std::vector<ExactMesh>& operands, std::vector<std::pair<std::size_t, FaceIndex>>& kept) {
+  return boolean_surface(operands, Operation::Union, kept);
+}
+
+bool difference_surface(std::vector<ExactMesh>& operands, std::vector<std::pair<std::size_t, FaceIndex>>& kept) {
+  if (operands.size() != 2) throw InvalidArgumentError("difference_surface: two operands expected");
+  return boolean_surface(operands, Operation::Difference, kept);
 }
 
 }  // namespace subfab::detail

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //! \file union_surface.h
-//! Private: the boundary of a union of closed solids, exactly, when the
+//! Private: the boundary of a union (or a difference) of closed solids, exactly, when the
 //! solids may touch each other along an edge or at a point (issue 17: the
 //! fill-deviation measure, measure_fill_deviation.h, needs the surface of
 //! the input ∪ the filled blocks near a fill; CGAL's union refuses to build
@@ -54,5 +54,19 @@ namespace subfab::detail {
 //! \throw CGAL's Self_intersection_exception when an operand self-intersects
 //!        (run it in an arena, see deterministic_arena.h)
 bool union_surface(std::vector<ExactMesh>& operands, std::vector<std::pair<std::size_t, FaceIndex>>& kept);
+
+//! The faces of ∂(O_0 \ O_1), exactly, for two operands as union_surface()
+//! takes them, by the same corefinement and classification: a face of O_0
+//! is kept when it lies outside O_1, or on ∂O_1 in a face of O_1 facing the
+//! other way (O_0 lies outside O_1 there); a face of O_1 when it lies inside
+//! O_0 (kept as O_1 orients it, i.e. facing into the difference: a soup for
+//! distances and covers, not a solid). Where CGAL's difference refuses to
+//! build a result that is not a 2-manifold (validate's check 4: a block's
+//! part outside the input touching itself along an edge), this still gives
+//! where that part is (check 10 measures only there).
+//! \param operands {O_0, O_1}; corefined in place
+//! \return as union_surface()
+//! \throw InvalidArgumentError unless there are two operands; as union_surface()
+bool difference_surface(std::vector<ExactMesh>& operands, std::vector<std::pair<std::size_t, FaceIndex>>& kept);
 
 }  // namespace subfab::detail

@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <optional>
 #include <random>
 #include <string>
@@ -23,6 +24,7 @@
 
 #include "geometry/deterministic_arena.h"
 #include "geometry/exact_mesh.h"
+#include "geometry/union_surface.h"
 #include "validate/validate_booleans.h"
 #include "subfab/checks/check_self_intersections.h"
 #include "subfab/core/error.h"
@@ -243,26 +245,59 @@ namespace {
 //! give a 2-manifold.
 void outside_in_arena(const Mesh& block, const Mesh& solid, std::optional<detail::OutsidePart>& out) {
   ExactMesh eb = detail::to_exact(block), es = detail::to_exact(solid), d;
-  if (!PMP::corefine_and_compute_difference(eb, es, d, kThrowOnSelfIntersection, kThrowOnSelfIntersection)) return;
-  const double volume = std::max(0.0, mesh_volume(d));
+  if (PMP::corefine_and_compute_difference(eb, es, d, kThrowOnSelfIntersection, kThrowOnSelfIntersection)) {
+    const double volume = std::max(0.0, mesh_volume(d));
+    detail::SuspendArena heap;
+    out.emplace();
+    out->volume = volume;
+    out->mesh = detail::to_double(d);
+    return;
+  }
+  // Not a 2-manifold: its faces, from the operands as given (the failed
+  // difference corefined eb and es in place).
+  std::vector<ExactMesh> operands{detail::to_exact(block), detail::to_exact(solid)};
+  std::vector<std::pair<std::size_t, detail::FaceIndex>> kept;
+  if (!detail::difference_surface(operands, kept)) return;
+  std::map<detail::ExactPoint, int, detail::ExactPointLess> index;
+  std::vector<detail::ExactPoint> points;
+  std::vector<Triangle> faces;
+  for (const auto& [k, f] : kept) {
+    const ExactMesh& m = operands[k];
+    Triangle t{};
+    int q = 0;
+    for (auto v : CGAL::vertices_around_face(m.halfedge(f), m)) {
+      const auto [it, added] = index.emplace(m.point(v), static_cast<int>(points.size()));
+      if (added) points.push_back(m.point(v));
+      if (q < 3) t[static_cast<std::size_t>(q)] = it->second;
+      ++q;
+    }
+    faces.push_back(t);
+  }
   detail::SuspendArena heap;
   out.emplace();
-  out->volume = volume;
-  out->mesh = detail::to_double(d);
+  Mesh& soup = out->boundary.emplace();
+  soup.faces = faces;
+  soup.vertices.reserve(points.size());
+  for (const detail::ExactPoint& p : points)  // each rounded once from its exact value
+    soup.vertices.emplace_back(CGAL::to_double(CGAL::exact(p.x())), CGAL::to_double(CGAL::exact(p.y())),
+                               CGAL::to_double(CGAL::exact(p.z())));
 }
 
 }  // namespace
 
 detail::OutsidePart detail::outside_part(const Mesh& block, const Mesh& solid) {
-  if (!boxes_overlap(bounding_box(block), bounding_box(solid))) return {signed_volume(block), block};
+  if (!boxes_overlap(bounding_box(block), bounding_box(solid))) return {signed_volume(block), block, std::nullopt};
   require_boolean_input(block, "the block", true);
   require_boolean_input(solid, "the input");
   detail::warm_up_exact_booleans();
   std::optional<OutsidePart> out;
   // CGAL may refuse an operand (a self-intersection near the cut): the
   // fallback below reports it, outside the arena.
-  if (detail::run_in_arena([&] { outside_in_arena(block, solid, out); }).empty() && out) return std::move(*out);
-  return {volume_outside(block, solid), std::nullopt};
+  detail::run_in_arena([&] { outside_in_arena(block, solid, out); });
+  if (out && out->mesh) return std::move(*out);
+  OutsidePart fallback{volume_outside(block, solid), std::nullopt, std::nullopt};
+  if (out) fallback.boundary = std::move(out->boundary);
+  return fallback;
 }
 
 CoverageReport surface_coverage(const Mesh& input, const std::vector<const Mesh*>& blocks,

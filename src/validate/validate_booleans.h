@@ -24,12 +24,18 @@ double exact_volume_outside(const Mesh& block, const Mesh& solid);
 struct OutsidePart {
   double volume = 0.0;       // vol(block \ solid), as volume_outside() (rounded coordinates)
   std::optional<Mesh> mesh;  // block \ solid (closed, rounded to doubles) when the local boolean gave it
+  //! Without `mesh` (CGAL's difference is not a 2-manifold: the part touches
+  //! itself along an edge or at a point): the faces bounding block \ solid,
+  //! a triangle soup (difference_surface(), vertices shared by exact
+  //! position, rounded to doubles), when that classification succeeded.
+  std::optional<Mesh> boundary;
 };
 
 //! volume_outside() that also gives the part outside: block \\ solid by
 //! the same exact corefinement, run in a deterministic arena (the same
 //! triangulation whatever the thread). Where it cannot give a 2-manifold,
-//! falls back to volume_outside() (intersection, Nef), without `mesh`.
+//! falls back to volume_outside() (intersection, Nef), without `mesh` but
+//! with `boundary` (the faces of the part, for check 10's cover).
 //! (Clipping the input to the block's box first, with clip_solid_to_box(),
 //! was tried: no faster on airplane, and a segfault inside CGAL on kitten.)
 //! \throw AlgorithmError as volume_outside()

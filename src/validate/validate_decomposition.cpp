@@ -356,7 +356,8 @@ ValidationReport validate_decomposition(const Mesh& input, const std::vector<Val
   // 4. inside the input
   const bool tolerant = options.tolerance > 0;
   std::vector<std::size_t> filled;  // blocks sticking out of the input (checked by check 10)
-  std::vector<std::optional<Mesh>> outside_parts(n);  // block \ input, where check 4's boolean gave it
+  // block \ input where check 4's boolean gave it, else its faces (a soup) where they could be classified
+  std::vector<std::optional<Mesh>> outside_parts(n);
   CheckReport inside = named_check(tolerant ? "inside the input, or sticking out within the tolerance (check 10)"
                                             : "inside the input (volume outside <= 1e-6 of the block)");
   {
@@ -371,7 +372,7 @@ ValidationReport validate_decomposition(const Mesh& input, const std::vector<Val
         if (tolerant) {
           detail::OutsidePart part = detail::outside_part(blocks[i].mesh, input);
           out[i] = part.volume;
-          outside_parts[i] = std::move(part.mesh);
+          outside_parts[i] = part.mesh ? std::move(part.mesh) : std::move(part.boundary);
         } else {
           out[i] = volume_outside(blocks[i].mesh, input);  // no arena, no mesh kept: faster (kitten 45 vs 70 s)
         }
@@ -602,8 +603,9 @@ ValidationReport validate_decomposition(const Mesh& input, const std::vector<Val
     // Only the points in the part of a block outside the input can deviate
     // (measure_fill_deviation.h, with C = block ∩ input): measured in boxes
     // that cover that part (check 4 computed it; in the frame, computed
-    // again there), in the columns of the whole block where the boolean fell back to the
-    // whole input.
+    // again there; the columns of its faces where it is not a 2-manifold:
+    // solid_columns() needs only its boundary), in the columns of the whole
+    // block where neither could be made.
     std::vector<std::optional<std::vector<BoundingBox>>> cover(filled.size());
     std::vector<std::string> errors(filled.size());
     // A frame block equal to its exported block, in a frame equal to the
@@ -616,7 +618,7 @@ ValidationReport validate_decomposition(const Mesh& input, const std::vector<Val
         if (frame && !same) {
           if (!frame->refused[i].empty()) return;
           const detail::OutsidePart part = detail::outside_part(*sticking[k], model);
-          if (part.mesh) cover[k] = solid_columns(*part.mesh);
+          if (part.mesh || part.boundary) cover[k] = solid_columns(part.mesh ? *part.mesh : *part.boundary);
         } else if (outside_parts[i]) {
           cover[k] = solid_columns(*outside_parts[i]);
         }

@@ -214,7 +214,12 @@ std::optional<std::vector<BoundingBox>> fill_columns(const Mesh& carved, const M
 //! it. Columns along the axis whose boxes are smallest in all, gathered per
 //! tile of an 8 x 8 grid over the footprint (one box per tile), each widened
 //! by 16 ulps of the largest coordinate (the part's vertices were rounded
-//! from exact points). Boxes closer than `merge_distance` (model units, >=
+//! from exact points). Only the part's boundary faces are read, so `part`
+//! may be the triangle soup bounding a solid that is not a 2-manifold
+//! (pieces touching along an edge: OutsidePart::boundary): the face where
+//! the line leaves the solid for the last time is on the shell around the
+//! point, which shares vertices, hence a component, with nothing lower than
+//! it. Boxes closer than `merge_distance` (model units, >=
 //! 0; 0 = none merged) are replaced by their bounding box (measure_fills()
 //! merges the boxes closer than twice the reach of each of its passes: such
 //! boxes' regions overlap, and one region costs less than two). Empty for
