@@ -42,36 +42,19 @@ enum class Side { Outside, Inside, OnSameWay, OnOppositeWay, Unknown };
 //! Which faces of the corefined operands bound the result.
 enum class Operation { Union, Difference };
 
-//! The shared body of union_surface() and difference_surface(): corefines
-//! the operands, classifies one face per patch against every other operand
-//! and keeps the faces `operation`'s rule keeps (see union_surface.h).
-bool boolean_surface(std::vector<ExactMesh>& operands, Operation operation,
-                     std::vector<std::pair<std::size_t, FaceIndex>>& kept) {
+//! Step 2 of union_surface(), shared with difference_surface(): classifies
+//! one face per patch of the corefined `operands` against every other
+//! operand as `given` and keeps the faces `operation`'s rule keeps.
+bool classify_corefined(const std::vector<ExactMesh>& operands, const std::vector<ExactMesh>& given,
+                        Operation operation, std::vector<std::pair<std::size_t, FaceIndex>>& kept) {
   kept.clear();
   const std::size_t m = operands.size();
-  for (const ExactMesh& o : operands)
-    if (has_coincident_vertices(o)) return false;
-  std::vector<CGAL::Bbox_3> box(m);
-  for (std::size_t a = 0; a < m; ++a) box[a] = PMP::bbox(operands[a]);
-  // Self-intersections are checked once, on the operands as given (CGAL's
-  // corefinement requires none; refining a mesh never creates one), not by
-  // each corefinement: those checks, repeated on meshes already refined by
-  // earlier pairs (constructed points of 300-1000 bits), were a third of
-  // the overlay's time (issue 17, bench/RESULTS.md "fillfast").
-  for (const ExactMesh& o : operands)
-    if (PMP::does_self_intersect(o)) throw PMP::Corefinement::Self_intersection_exception();
-  // The operands as given: classifying a point against O_b does not depend
-  // on how O_b is refined, and the given faces have far smaller exact
-  // coordinates than the refined ones (the side tests' exact fallbacks).
-  const std::vector<ExactMesh> given = operands;
-  // 1. corefine every pair whose boxes meet (closed boxes: touching counts)
-  for (std::size_t a = 0; a < m; ++a)
-    for (std::size_t b = a + 1; b < m; ++b)
-      if (CGAL::do_overlap(box[a], box[b])) PMP::corefine(operands[a], operands[b]);
   // CGAL 5.5's corefinement can leave a broken mesh (a face around a null
   // vertex: seen in a union, measure_fill_deviation.cpp): refused, not read.
   for (const ExactMesh& o : operands)
     if (!CGAL::is_valid_polygon_mesh(o)) return false;
+  std::vector<CGAL::Bbox_3> box(m);
+  for (std::size_t a = 0; a < m; ++a) box[a] = PMP::bbox(given[a]);
   // 2. classify one interior point of every face against the other operands
   //    (as given, see above)
   std::vector<std::unique_ptr<Tree>> trees(m);
@@ -204,12 +187,37 @@ bool boolean_surface(std::vector<ExactMesh>& operands, Operation operation,
 }  // namespace
 
 bool union_surface(std::vector<ExactMesh>& operands, std::vector<std::pair<std::size_t, FaceIndex>>& kept) {
-  return boolean_surface(operands, Operation::Union, kept);
+  kept.clear();
+  const std::size_t m = operands.size();
+  for (const ExactMesh& o : operands)
+    if (has_coincident_vertices(o)) return false;
+  std::vector<CGAL::Bbox_3> box(m);
+  for (std::size_t a = 0; a < m; ++a) box[a] = PMP::bbox(operands[a]);
+  // Self-intersections are checked once, on the operands as given (CGAL's
+  // corefinement requires none; refining a mesh never creates one), not by
+  // each corefinement: those checks, repeated on meshes already refined by
+  // earlier pairs (constructed points of 300-1000 bits), were a third of
+  // the overlay's time (issue 17, bench/RESULTS.md "fillfast").
+  for (const ExactMesh& o : operands)
+    if (PMP::does_self_intersect(o)) throw PMP::Corefinement::Self_intersection_exception();
+  // The operands as given: classifying a point against O_b does not depend
+  // on how O_b is refined, and the given faces have far smaller exact
+  // coordinates than the refined ones (the side tests' exact fallbacks).
+  const std::vector<ExactMesh> given = operands;
+  // 1. corefine every pair whose boxes meet (closed boxes: touching counts)
+  for (std::size_t a = 0; a < m; ++a)
+    for (std::size_t b = a + 1; b < m; ++b)
+      if (CGAL::do_overlap(box[a], box[b])) PMP::corefine(operands[a], operands[b]);
+  return classify_corefined(operands, given, Operation::Union, kept);
 }
 
-bool difference_surface(std::vector<ExactMesh>& operands, std::vector<std::pair<std::size_t, FaceIndex>>& kept) {
-  if (operands.size() != 2) throw InvalidArgumentError("difference_surface: two operands expected");
-  return boolean_surface(operands, Operation::Difference, kept);
+bool difference_surface(const std::vector<ExactMesh>& corefined, const std::vector<ExactMesh>& given,
+                        std::vector<std::pair<std::size_t, FaceIndex>>& kept) {
+  if (corefined.size() != 2 || given.size() != 2)
+    throw InvalidArgumentError("difference_surface: two operands expected");
+  for (const ExactMesh& o : given)
+    if (has_coincident_vertices(o)) return false;
+  return classify_corefined(corefined, given, Operation::Difference, kept);
 }
 
 }  // namespace subfab::detail

@@ -55,18 +55,20 @@ namespace subfab::detail {
 //!        (run it in an arena, see deterministic_arena.h)
 bool union_surface(std::vector<ExactMesh>& operands, std::vector<std::pair<std::size_t, FaceIndex>>& kept);
 
-//! The faces of ∂(O_0 \ O_1), exactly, for two operands as union_surface()
-//! takes them, by the same corefinement and classification: a face of O_0
-//! is kept when it lies outside O_1, or on ∂O_1 in a face of O_1 facing the
-//! other way (O_0 lies outside O_1 there); a face of O_1 when it lies inside
-//! O_0 (kept as O_1 orients it, i.e. facing into the difference: a soup for
-//! distances and covers, not a solid). Where CGAL's difference refuses to
-//! build a result that is not a 2-manifold (validate's check 4: a block's
-//! part outside the input touching itself along an edge), this still gives
-//! where that part is (check 10 measures only there).
-//! \param operands {O_0, O_1}; corefined in place
+//! The faces of ∂(O_0 \ O_1), exactly, for two closed, outward-oriented,
+//! self-intersection-free operands that CGAL has already corefined with each
+//! other (`corefined`: a CGAL difference that refused to output a result
+//! that is not a 2-manifold leaves its operands so: validate's check 4, a
+//! block's part outside the input touching itself along an edge), by
+//! union_surface()'s classification (step 2) against the operands as
+//! `given` before: a face of O_0 is kept when it lies outside O_1, or on ∂O_1
+//! in a face of O_1 facing the other way (O_0 lies outside O_1 there); a face
+//! of O_1 when it lies inside O_0 (kept as O_1 orients it: reverse it for
+//! the difference's outward orientation). Check 10 measures the deviation
+//! only where that part is.
 //! \return as union_surface()
-//! \throw InvalidArgumentError unless there are two operands; as union_surface()
-bool difference_surface(std::vector<ExactMesh>& operands, std::vector<std::pair<std::size_t, FaceIndex>>& kept);
+//! \throw InvalidArgumentError unless there are two operands of each
+bool difference_surface(const std::vector<ExactMesh>& corefined, const std::vector<ExactMesh>& given,
+                        std::vector<std::pair<std::size_t, FaceIndex>>& kept);
 
 }  // namespace subfab::detail

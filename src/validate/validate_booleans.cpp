@@ -42,10 +42,13 @@ using detail::ExactMesh;
 //! milled-shape measures report).
 enum class Volume { Rounded, Exact };
 
-//! The exact volume, rounded once: each face's exact determinant taken as a
-//! double-double, summed with error-free transformations (the sum is within
-//! 1e-28 of the exact volume, relative, before the final rounding).
-double exact_volume(const ExactMesh& m) {
+//! The exact volume bounded by the triangles that `for_each` gives (it
+//! calls its argument with the three corners of each, outward oriented),
+//! rounded once: each triangle's exact determinant taken as a double-double,
+//! summed with error-free transformations (the sum is within 1e-28 of the
+//! exact volume, relative, before the final rounding).
+template <class ForEachTriangle>
+double exact_volume_of(ForEachTriangle for_each) {
   double hi = 0.0, lo = 0.0;
   auto add = [&](double x) {  // Knuth's two-sum into (hi, lo)
     const double s = hi + x, z = s - hi;
@@ -53,16 +56,23 @@ double exact_volume(const ExactMesh& m) {
     hi = s;
   };
   const detail::ExactPoint origin(0, 0, 0);
-  for (auto f : m.faces()) {
-    const auto h = m.halfedge(f);
-    const detail::ExactPoint &a = m.point(m.source(h)), &b = m.point(m.target(h)),
-                             &c = m.point(m.target(m.next(h)));
+  for_each([&](const detail::ExactPoint& a, const detail::ExactPoint& b, const detail::ExactPoint& c) {
     const auto det = CGAL::exact(CGAL::determinant(a - origin, b - origin, c - origin));
     const double first = CGAL::to_double(det);
     add(first);
     add(CGAL::to_double(det - decltype(det)(first)));
-  }
+  });
   return (hi + lo) / 6.0;
+}
+
+//! The exact volume of a closed mesh, rounded once (exact_volume_of()).
+double exact_volume(const ExactMesh& m) {
+  return exact_volume_of([&](auto&& triangle) {
+    for (auto f : m.faces()) {
+      const auto h = m.halfedge(f);
+      triangle(m.point(m.source(h)), m.point(m.target(h)), m.point(m.target(m.next(h))));
+    }
+  });
 }
 
 double mesh_volume(const ExactMesh& m, Volume mode = Volume::Rounded) {
@@ -253,11 +263,12 @@ void outside_in_arena(const Mesh& block, const Mesh& solid, std::optional<detail
     out->mesh = detail::to_double(d);
     return;
   }
-  // Not a 2-manifold: its faces, from the operands as given (the failed
-  // difference corefined eb and es in place).
-  std::vector<ExactMesh> operands{detail::to_exact(block), detail::to_exact(solid)};
+  // Not a 2-manifold: its faces, classified on eb and es as the failed
+  // difference left them (corefined) against the operands as given.
+  std::vector<ExactMesh> operands{std::move(eb), std::move(es)};
+  const std::vector<ExactMesh> given{detail::to_exact(block), detail::to_exact(solid)};
   std::vector<std::pair<std::size_t, detail::FaceIndex>> kept;
-  if (!detail::difference_surface(operands, kept)) return;
+  if (!detail::difference_surface(operands, given, kept)) return;
   std::map<detail::ExactPoint, int, detail::ExactPointLess> index;
   std::vector<detail::ExactPoint> points;
   std::vector<Triangle> faces;
@@ -271,10 +282,19 @@ void outside_in_arena(const Mesh& block, const Mesh& solid, std::optional<detail
       if (q < 3) t[static_cast<std::size_t>(q)] = it->second;
       ++q;
     }
+    if (k == 1) std::swap(t[1], t[2]);  // the input's faces, turned to face out of the difference
     faces.push_back(t);
   }
+  // The volume bounded by the faces (closed, outward: the divergence theorem
+  // holds for a non-manifold surface too), exact.
+  const double volume = std::max(0.0, exact_volume_of([&](auto&& triangle) {
+    for (const Triangle& t : faces)
+      triangle(points[static_cast<std::size_t>(t[0])], points[static_cast<std::size_t>(t[1])],
+               points[static_cast<std::size_t>(t[2])]);
+  }));
   detail::SuspendArena heap;
   out.emplace();
+  out->volume = volume;
   Mesh& soup = out->boundary.emplace();
   soup.faces = faces;
   soup.vertices.reserve(points.size());
@@ -293,11 +313,8 @@ detail::OutsidePart detail::outside_part(const Mesh& block, const Mesh& solid) {
   std::optional<OutsidePart> out;
   // CGAL may refuse an operand (a self-intersection near the cut): the
   // fallback below reports it, outside the arena.
-  detail::run_in_arena([&] { outside_in_arena(block, solid, out); });
-  if (out && out->mesh) return std::move(*out);
-  OutsidePart fallback{volume_outside(block, solid), std::nullopt, std::nullopt};
-  if (out) fallback.boundary = std::move(out->boundary);
-  return fallback;
+  if (detail::run_in_arena([&] { outside_in_arena(block, solid, out); }).empty() && out) return std::move(*out);
+  return {volume_outside(block, solid), std::nullopt, std::nullopt};
 }
 
 CoverageReport surface_coverage(const Mesh& input, const std::vector<const Mesh*>& blocks,
