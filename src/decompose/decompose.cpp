@@ -617,15 +617,15 @@ bool replace_failed_blocks(const Mesh& solid, const std::vector<Block>& round_ca
   return true;
 }
 
-//! Blocks of `piece`, the union of sliver `s` and its neighbour `j` (both
-//! in `blocks`), decomposed again within the tolerance T = result.tolerance
+//! Blocks of `piece`, the union of the blocks `group` (a sliver and one or
+//! two of its neighbours, in `blocks`), decomposed again within the tolerance T = result.tolerance
 //! > 0 (recarve_slivers(); issue 17, "no slivers"): their exact
 //! re-decomposition gives the sliver back where the carve's box planes stay
 //! where they were (elephant.off, turbine.off at 1e-3). Under the piece's
 //! own allowances at each depth fraction in turn (the largest first;
 //! stages 2-6 on the piece, then merge_blocks() with `mo`), each block is
 //! replaced by its milled shape, and the first level is kept whose blocks
-//! are at most two, none a sliver (`min_thickness`), each milled shape a
+//! are at most as many as the group's, none a sliver (`min_thickness`), each milled shape a
 //! closed height field that keeps the model within T of `solid`
 //! (FillDeviationMeter: measure + error <= T, with the blocks that stick
 //! out; only measured where it adds material or the pair stuck out),
@@ -641,13 +641,14 @@ struct WithinParts {
 std::optional<WithinParts> recarve_within(const Mesh& solid, const Mesh& piece, const Mesh& input,
                                           const DecomposeOptions& quiet, const DecomposeResult& result,
                                           const std::vector<Block>& blocks, const std::vector<char>& alive,
-                                          const std::vector<char>& sticks_out, std::size_t s, std::size_t j,
+                                          const std::vector<char>& sticks_out, const std::vector<std::size_t>& group,
                                           double min_thickness, const MergeOptions& mo,
                                           const std::function<std::string(const Block&)>& defect, std::string& why) {
   const double tolerance = result.tolerance;
   const std::vector<double>& fractions = quiet.tolerance_depth_fractions;
-  const bool pair_out = sticks_out[s] || sticks_out[j];
-  const auto skip = [&](std::size_t k) { return k == s || k == j || !alive[k]; };
+  const auto in_group = [&](std::size_t k) { return std::find(group.begin(), group.end(), k) != group.end(); };
+  const bool pair_out = std::any_of(group.begin(), group.end(), [&](std::size_t k) { return sticks_out[k] != 0; });
+  const auto skip = [&](std::size_t k) { return in_group(k) || !alive[k]; };
   const std::vector<BoundingBox> boxes = detail::block_boxes(blocks);
   const std::vector<double> volumes = detail::block_volumes(blocks);
   std::vector<const Mesh*> sticking;  // the blocks the meter's model adds to the input
@@ -671,7 +672,7 @@ std::optional<WithinParts> recarve_within(const Mesh& solid, const Mesh& piece, 
       failed(std::string("failed (") + e.what() + ")");
       continue;
     }
-    if (parts.empty() || parts.size() > 2) {
+    if (parts.empty() || parts.size() > group.size()) {
       failed(std::to_string(parts.size()) + " blocks");
       continue;
     }
@@ -728,11 +729,9 @@ std::optional<WithinParts> recarve_within(const Mesh& solid, const Mesh& piece, 
       }
       w.bound = std::max(w.bound, dev.bound());
       ok = !detail::overlaps_a_block(b.mesh, blocks, boxes, volumes, skip, MillToleranceOptions{}.collision_tolerance);
-      if (ok && w.blocks.size() == 2) {  // and the other new block
-        const std::vector<Block> other{w.blocks[1 - i]};
-        ok = !detail::overlaps_a_block(b.mesh, other, detail::block_boxes(other), detail::block_volumes(other), {},
-                                       MillToleranceOptions{}.collision_tolerance);
-      }
+      if (ok)  // and the other new blocks
+        ok = !detail::overlaps_a_block(b.mesh, w.blocks, detail::block_boxes(w.blocks), detail::block_volumes(w.blocks),
+                                       [&](std::size_t o) { return o == i; }, MillToleranceOptions{}.collision_tolerance);
       if (!ok) failed("a milled shape overlapping another block");
     }
     if (ok) return w;
@@ -750,7 +749,10 @@ std::optional<WithinParts> recarve_within(const Mesh& solid, const Mesh& piece, 
 //! the model made, its deviation and the overlaps stay as they were (up to
 //! the cleanup's 1e-10 x scale); the pair is replaced when that gives at
 //! most two blocks, none a sliver (sliver_flags(), validate's rule) and
-//! each passing the export's check `defect`. Within a tolerance (T > 0),
+//! each passing the export's check `defect`. When no neighbour alone
+//! does, the sliver is tried with two neighbours at once (pairs of the
+//! three largest; their union, kept when at most three blocks, none a
+//! sliver). Within a tolerance (T > 0),
 //! when the exact blocks are not kept, the union is decomposed again under
 //! its own allowances (recarve_within(): milled, measured within T, checked
 //! for collisions; its deviation bound raises result.deviation_bound). A
@@ -782,19 +784,28 @@ std::size_t recarve_slivers(const Mesh& solid, const Mesh& input, const Decompos
         near.emplace_back(-signed_volume(blocks[j].mesh), j);
     std::sort(near.begin(), near.end());
     if (near.size() > max_neighbours) near.resize(max_neighbours);
-    for (const auto& [minus_volume, j] : near) {
-      // why a pair is not kept, in the log (elephant.off at 1e-3: its two
+    // One attempt: the sliver with the blocks `others` (its neighbours),
+    // their union decomposed again into at most as many blocks as it joins.
+    const auto attempt = [&](const std::vector<std::size_t>& others) {
+      std::vector<std::size_t> group{s};
+      group.insert(group.end(), others.begin(), others.end());
+      std::string names;
+      for (std::size_t k : others) names += (names.empty() ? "" : " and ") + std::to_string(k + 1);
+      // why a group is not kept, in the log (elephant.off at 1e-3: its two
       // slivers stay slivers, or become 3 blocks, with each neighbour)
-      const auto rejected = [&, j = j](const std::string& why) {
+      const auto rejected = [&](const std::string& why) {
         if (progress)
-          progress->info("sliver block " + std::to_string(s + 1) + " with its neighbour " + std::to_string(j + 1) +
-                         ": " + why);
+          progress->info("sliver block " + std::to_string(s + 1) + " with its neighbour" +
+                         (others.size() > 1 ? "s " : " ") + names + ": " + why);
       };
-      detail::RoundingReport rounding;
-      std::optional<Mesh> u = detail::exact_block_union(blocks[s].mesh, blocks[j].mesh, nullptr, rounding);
+      std::optional<Mesh> u = blocks[s].mesh;
+      for (std::size_t k = 0; k < others.size() && u; ++k) {
+        detail::RoundingReport rounding;
+        u = detail::exact_block_union(*u, blocks[others[k]].mesh, nullptr, rounding);
+      }
       if (!u) {
         rejected("their exact union is not one solid");
-        continue;
+        return false;
       }
       std::vector<Block> parts;
       DecomposeResult sub = piece_result(result, result.tolerance);
@@ -802,21 +813,20 @@ std::size_t recarve_slivers(const Mesh& solid, const Mesh& input, const Decompos
       Mesh piece = std::move(*u);
       bool feasible = false;
       try {
-        clean_rounded_block(piece, axis_direction(blocks[j].axis),
+        clean_rounded_block(piece, axis_direction(blocks[others.front()].axis),
                             FinalizeOptions{}.relative_tolerance * rounding_scale(solid));
         require_closed_solid_result(piece, "the union of a sliver and its neighbour is not a clean solid: ");
         feasible = find_infeasible_features(piece).feasible();
         if (feasible) parts = merge_blocks(carve_stages(piece, nullptr, input, quiet, sub, /*input_spacing=*/true), mo).blocks;
-      } catch (const std::exception& e) {  // this pair cannot be decomposed again: the next neighbour
-        parts.clear();
+      } catch (const std::exception& e) {  // this group cannot be decomposed again: the next one
         rejected(std::string("not decomposed again (") + e.what() + ")");
-        continue;
+        return false;
       }
       std::string why;  // why the exact blocks are not kept
       if (parts.empty()) {
         why = feasible ? "no exact blocks" : "their union holds a crease or spike no exact block covers";
-      } else if (parts.size() > 2) {
-        why = std::to_string(parts.size()) + " blocks exactly (at most 2 kept)";
+      } else if (parts.size() > group.size()) {
+        why = std::to_string(parts.size()) + " blocks exactly (at most " + std::to_string(group.size()) + " kept)";
       } else {
         const std::vector<char> thin = sliver_flags(solid, parts, min_thickness);
         if (std::any_of(thin.begin(), thin.end(), [](char c) { return c != 0; }))
@@ -824,13 +834,14 @@ std::size_t recarve_slivers(const Mesh& solid, const Mesh& input, const Decompos
         else if (defect && std::any_of(parts.begin(), parts.end(), [&](const Block& b) { return !defect(b).empty(); }))
           why = "a block fails the export's check";
       }
-      std::vector<char> parts_out(parts.size(), static_cast<char>(sticks_out[s] | sticks_out[j]));
+      const bool group_out = std::any_of(group.begin(), group.end(), [&](std::size_t k) { return sticks_out[k] != 0; });
+      std::vector<char> parts_out(parts.size(), static_cast<char>(group_out));
       std::string how = "exactly";
       if (!why.empty() && result.tolerance > 0) {
         // within the tolerance: the piece's own allowances, the milled shapes measured
         std::string within_why;
-        std::optional<WithinParts> w = recarve_within(solid, piece, input, quiet, result, blocks, alive, sticks_out, s,
-                                                      j, min_thickness, mo, defect, within_why);
+        std::optional<WithinParts> w = recarve_within(solid, piece, input, quiet, result, blocks, alive, sticks_out,
+                                                      group, min_thickness, mo, defect, within_why);
         if (w) {
           parts = std::move(w->blocks);
           parts_out = std::move(w->filled);
@@ -843,21 +854,30 @@ std::size_t recarve_slivers(const Mesh& solid, const Mesh& input, const Decompos
       }
       if (!why.empty()) {
         rejected(why);
-        continue;
+        return false;
       }
       if (progress)
-        progress->info("sliver block " + std::to_string(s + 1) + " and its neighbour " + std::to_string(j + 1) +
-                       " decomposed again together, " + how + ": " + std::to_string(parts.size()) +
-                       " block(s), no sliver");
-      alive[s] = alive[j] = 0;
+        progress->info("sliver block " + std::to_string(s + 1) + " and its neighbour" +
+                       (others.size() > 1 ? "s " : " ") + names + " decomposed again together, " + how + ": " +
+                       std::to_string(parts.size()) + " block(s), no sliver");
+      for (std::size_t k : group) alive[k] = 0;
       for (std::size_t p = 0; p < parts.size(); ++p) {
         blocks.push_back(std::move(parts[p]));
         sticks_out.push_back(parts_out[p]);
         alive.push_back(1);
       }
       ++removed;
-      break;
-    }
+      return true;
+    };
+    bool done = false;
+    for (std::size_t a = 0; a < near.size() && !done; ++a) done = attempt({near[a].second});
+    // With two neighbours at once (the three largest, in pairs): a union
+    // that holds more of the material around the sliver lets the carve put
+    // its box planes elsewhere (spot.off at 5e-4: block 1 with 29, or with 2,
+    // gave a sliver back at every level).
+    const std::size_t two = std::min<std::size_t>(near.size(), 3);
+    for (std::size_t a = 0; a < two && !done; ++a)
+      for (std::size_t b = a + 1; b < two && !done; ++b) done = attempt({near[a].second, near[b].second});
   }
   if (removed == 0) return 0;
   std::vector<Block> kept;
