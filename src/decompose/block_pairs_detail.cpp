@@ -59,15 +59,22 @@ bool overlaps_a_block(const Mesh& m, const std::vector<Block>& blocks, const std
   return false;
 }
 
-std::optional<Mesh> exact_block_union(const Mesh& a, const Mesh& b,
+std::optional<Mesh> exact_block_union(const std::vector<const Mesh*>& meshes,
                                       const std::function<bool(const ExactMesh&)>& accept, RoundingReport& rounding) {
-  if (count_degenerate_faces(a) > 0 || count_degenerate_faces(b) > 0) return std::nullopt;
+  if (meshes.empty()) return std::nullopt;
+  for (const Mesh* m : meshes)
+    if (count_degenerate_faces(*m) > 0) return std::nullopt;
   warm_up_exact_booleans();
   std::optional<Mesh> out;
   const std::string error = run_in_arena([&] {
-    ExactMesh ea = to_exact(a), eb = to_exact(b), u;
+    ExactMesh u = to_exact(*meshes[0]);
     const auto np = CGAL::parameters::throw_on_self_intersection(true);
-    if (PMP::corefine_and_compute_union(ea, eb, u, np, np) && u.number_of_faces() > 0) {
+    for (std::size_t k = 1; k < meshes.size(); ++k) {
+      ExactMesh e = to_exact(*meshes[k]), r;
+      if (!PMP::corefine_and_compute_union(u, e, r, np, np)) return;
+      u = std::move(r);
+    }
+    if (u.number_of_faces() > 0) {
       auto fcc = u.add_property_map<ExactMesh::Face_index, std::size_t>("f:cc", 0).first;
       if ((!accept || accept(u)) && PMP::connected_components(u, fcc) == 1) {
         SuspendArena heap;
@@ -75,8 +82,13 @@ std::optional<Mesh> exact_block_union(const Mesh& a, const Mesh& b,
       }
     }
   });
-  if (!error.empty()) out.reset();  // an exact boolean that fails means: do not merge this pair
+  if (!error.empty()) out.reset();  // an exact boolean that fails means: do not merge these blocks
   return out;
+}
+
+std::optional<Mesh> exact_block_union(const Mesh& a, const Mesh& b,
+                                      const std::function<bool(const ExactMesh&)>& accept, RoundingReport& rounding) {
+  return exact_block_union(std::vector<const Mesh*>{&a, &b}, accept, rounding);
 }
 
 }  // namespace subfab::detail

@@ -50,4 +50,10 @@ bool overlaps_a_block(const Mesh& m, const std::vector<Block>& blocks, const std
 std::optional<Mesh> exact_block_union(const Mesh& a, const Mesh& b,
                                       const std::function<bool(const ExactMesh&)>& accept, RoundingReport& rounding);
 
+//! The union of several blocks, exactly (successive exact unions, one
+//! rounding at the end), as the pair version: nullopt unless every union is
+//! a 2-manifold, the result one connected piece and `accept` holds.
+std::optional<Mesh> exact_block_union(const std::vector<const Mesh*>& meshes,
+                                      const std::function<bool(const ExactMesh&)>& accept, RoundingReport& rounding);
+
 }  // namespace subfab::detail

@@ -798,11 +798,10 @@ std::size_t recarve_slivers(const Mesh& solid, const Mesh& input, const Decompos
           progress->info("sliver block " + std::to_string(s + 1) + " with its neighbour" +
                          (others.size() > 1 ? "s " : " ") + names + ": " + why);
       };
-      std::optional<Mesh> u = blocks[s].mesh;
-      for (std::size_t k = 0; k < others.size() && u; ++k) {
-        detail::RoundingReport rounding;
-        u = detail::exact_block_union(*u, blocks[others[k]].mesh, nullptr, rounding);
-      }
+      std::vector<const Mesh*> members;
+      for (std::size_t k : group) members.push_back(&blocks[k].mesh);
+      detail::RoundingReport rounding;
+      std::optional<Mesh> u = detail::exact_block_union(members, nullptr, rounding);
       if (!u) {
         rejected("their exact union is not one solid");
         return false;
