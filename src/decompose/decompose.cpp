@@ -752,7 +752,10 @@ std::optional<WithinParts> recarve_within(const Mesh& solid, const Mesh& piece, 
 //! each passing the export's check `defect`. When no neighbour alone
 //! does, the sliver is tried with two neighbours at once (pairs of the
 //! three largest; their union, kept when at most three blocks, none a
-//! sliver). Within a tolerance (T > 0),
+//! sliver). Last, a sliver none of these removes takes the first exact
+//! re-decomposition that gave one block more than its group, none a
+//! sliver, if its group is still whole after every sliver had its turn
+//! (one block more rather than a block no machine can hold). Within a tolerance (T > 0),
 //! when the exact blocks are not kept, the union is decomposed again under
 //! its own allowances (recarve_within(): milled, measured within T, checked
 //! for collisions; its deviation bound raises result.deviation_bound). A
@@ -775,6 +778,30 @@ std::size_t recarve_slivers(const Mesh& solid, const Mesh& input, const Decompos
   const std::vector<char> sliver = sliver_flags(solid, blocks, min_thickness);
   std::vector<char> alive(n0, 1);
   std::size_t removed = 0;
+  // The group's blocks (group[0] the sliver) replaced by `parts`.
+  const auto replace = [&](const std::vector<std::size_t>& group, std::vector<Block> parts,
+                           const std::vector<char>& parts_out, const std::string& names, const std::string& how) {
+    if (progress)
+      progress->info("sliver block " + std::to_string(group[0] + 1) + " and its neighbour" +
+                     (group.size() > 2 ? "s " : " ") + names + " decomposed again together, " + how + ": " +
+                     std::to_string(parts.size()) + " block(s), no sliver");
+    for (std::size_t k : group) alive[k] = 0;
+    for (std::size_t p = 0; p < parts.size(); ++p) {
+      blocks.push_back(std::move(parts[p]));
+      sticks_out.push_back(parts_out[p]);
+      alive.push_back(1);
+    }
+    ++removed;
+  };
+  // Per sliver, the first exact re-decomposition with one block more than
+  // its group, none a sliver: taken after every sliver had its attempts,
+  // where none kept the count and the group is still whole.
+  struct Spare {
+    std::vector<std::size_t> group;
+    std::vector<Block> parts;
+    std::string names;
+  };
+  std::vector<Spare> spares;
   for (std::size_t s = 0; s < n0; ++s) {
     if (!sliver[s] || !alive[s]) continue;
     const BoundingBox sb = bounding_box(blocks[s].mesh);
@@ -784,6 +811,7 @@ std::size_t recarve_slivers(const Mesh& solid, const Mesh& input, const Decompos
         near.emplace_back(-signed_volume(blocks[j].mesh), j);
     std::sort(near.begin(), near.end());
     if (near.size() > max_neighbours) near.resize(max_neighbours);
+    std::optional<Spare> spare;  // this sliver's
     // One attempt: the sliver with the blocks `others` (its neighbours),
     // their union decomposed again into at most as many blocks as it joins.
     const auto attempt = [&](const std::vector<std::size_t>& others) {
@@ -826,6 +854,13 @@ std::size_t recarve_slivers(const Mesh& solid, const Mesh& input, const Decompos
         why = feasible ? "no exact blocks" : "their union holds a crease or spike no exact block covers";
       } else if (parts.size() > group.size()) {
         why = std::to_string(parts.size()) + " blocks exactly (at most " + std::to_string(group.size()) + " kept)";
+        // one block more, none a sliver: the last resort (below)
+        if (!spare && parts.size() == group.size() + 1) {
+          const std::vector<char> thin = sliver_flags(solid, parts, min_thickness);
+          if (std::none_of(thin.begin(), thin.end(), [](char c) { return c != 0; }) &&
+              !(defect && std::any_of(parts.begin(), parts.end(), [&](const Block& b) { return !defect(b).empty(); })))
+            spare = Spare{group, parts, names};
+        }
       } else {
         const std::vector<char> thin = sliver_flags(solid, parts, min_thickness);
         if (std::any_of(thin.begin(), thin.end(), [](char c) { return c != 0; }))
@@ -855,17 +890,7 @@ std::size_t recarve_slivers(const Mesh& solid, const Mesh& input, const Decompos
         rejected(why);
         return false;
       }
-      if (progress)
-        progress->info("sliver block " + std::to_string(s + 1) + " and its neighbour" +
-                       (others.size() > 1 ? "s " : " ") + names + " decomposed again together, " + how + ": " +
-                       std::to_string(parts.size()) + " block(s), no sliver");
-      for (std::size_t k : group) alive[k] = 0;
-      for (std::size_t p = 0; p < parts.size(); ++p) {
-        blocks.push_back(std::move(parts[p]));
-        sticks_out.push_back(parts_out[p]);
-        alive.push_back(1);
-      }
-      ++removed;
+      replace(group, std::move(parts), parts_out, names, how);
       return true;
     };
     bool done = false;
@@ -877,6 +902,15 @@ std::size_t recarve_slivers(const Mesh& solid, const Mesh& input, const Decompos
     const std::size_t two = std::min<std::size_t>(near.size(), 3);
     for (std::size_t a = 0; a < two && !done; ++a)
       for (std::size_t b = a + 1; b < two && !done; ++b) done = attempt({near[a].second, near[b].second});
+    if (!done && spare) spares.push_back(std::move(*spare));
+  }
+  // Last resort: one block more, exactly, rather than a sliver no machine
+  // can hold (elephant.off at 1e-3: block 35 with its neighbours 43 and 109).
+  for (Spare& sp : spares) {
+    if (!std::all_of(sp.group.begin(), sp.group.end(), [&](std::size_t k) { return alive[k] != 0; })) continue;
+    const bool out = std::any_of(sp.group.begin(), sp.group.end(), [&](std::size_t k) { return sticks_out[k] != 0; });
+    replace(sp.group, std::move(sp.parts), std::vector<char>(sp.group.size() + 1, static_cast<char>(out)), sp.names,
+            "exactly, one block more");
   }
   if (removed == 0) return 0;
   std::vector<Block> kept;
