@@ -264,7 +264,10 @@ void outside_in_arena(const Mesh& block, const Mesh& solid, std::optional<detail
     return;
   }
   // Not a 2-manifold: its faces, classified on eb and es as the failed
-  // difference left them (corefined) against the operands as given.
+  // difference left them against the operands as given. Corefined: CGAL
+  // 5.5's corefinement visitor splits and triangulates the intersected faces
+  // of both inputs in place (Visitor.h, finalize()) before its output
+  // builder finds that the result is not a 2-manifold.
   std::vector<ExactMesh> operands{std::move(eb), std::move(es)};
   const std::vector<ExactMesh> given{detail::to_exact(block), detail::to_exact(solid)};
   std::vector<std::pair<std::size_t, detail::FaceIndex>> kept;
