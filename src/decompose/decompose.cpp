@@ -647,7 +647,7 @@ std::optional<WithinParts> recarve_within(const Mesh& solid, const Mesh& piece, 
   const double tolerance = result.tolerance;
   const std::vector<double>& fractions = quiet.tolerance_depth_fractions;
   const auto in_group = [&](std::size_t k) { return std::find(group.begin(), group.end(), k) != group.end(); };
-  const bool pair_out = std::any_of(group.begin(), group.end(), [&](std::size_t k) { return sticks_out[k] != 0; });
+  const bool group_out = std::any_of(group.begin(), group.end(), [&](std::size_t k) { return sticks_out[k] != 0; });
   const auto skip = [&](std::size_t k) { return in_group(k) || !alive[k]; };
   const std::vector<BoundingBox> boxes = detail::block_boxes(blocks);
   const std::vector<double> volumes = detail::block_volumes(blocks);
@@ -688,7 +688,7 @@ std::optional<WithinParts> recarve_within(const Mesh& solid, const Mesh& piece, 
       }
       if (m.is_block) {
         w.blocks.push_back(p);
-        w.filled.push_back(static_cast<char>(pair_out));
+        w.filled.push_back(static_cast<char>(group_out));
         continue;
       }
       if (!check_closed_solid(m.mesh).ok() || !is_height_field(m.mesh, axis_direction(p.axis))) {
@@ -719,7 +719,7 @@ std::optional<WithinParts> recarve_within(const Mesh& solid, const Mesh& piece, 
       for (std::size_t o = 0; o < w.blocks.size(); ++o)
         if (o != i && w.filled[o]) others.push_back(&w.blocks[o].mesh);
       std::optional<std::vector<BoundingBox>> fill;
-      if (!pair_out && b.mesh.num_faces() > 0) fill = fill_columns(parts[i].mesh, b.mesh, b.axis);
+      if (!group_out && b.mesh.num_faces() > 0) fill = fill_columns(parts[i].mesh, b.mesh, b.axis);
       const FillDeviation dev = fill ? meter.measure_fill(b.mesh, others, *fill, fo) : meter.measure(b.mesh, others, fo);
       if (!dev.failure.empty() || !(dev.bound() <= tolerance)) {
         failed(dev.failure.empty() ? "a milled shape " + std::to_string(dev.bound() / tolerance) + " T from the input"
@@ -799,6 +799,7 @@ std::size_t recarve_slivers(const Mesh& solid, const Mesh& input, const Decompos
   struct Spare {
     std::vector<std::size_t> group;
     std::vector<Block> parts;
+    std::vector<char> parts_out;
     std::string names;
   };
   std::vector<Spare> spares;
@@ -849,6 +850,7 @@ std::size_t recarve_slivers(const Mesh& solid, const Mesh& input, const Decompos
         rejected(std::string("not decomposed again (") + e.what() + ")");
         return false;
       }
+      const bool group_out = std::any_of(group.begin(), group.end(), [&](std::size_t k) { return sticks_out[k] != 0; });
       std::string why;  // why the exact blocks are not kept
       if (parts.empty()) {
         why = feasible ? "no exact blocks" : "their union holds a crease or spike no exact block covers";
@@ -859,7 +861,7 @@ std::size_t recarve_slivers(const Mesh& solid, const Mesh& input, const Decompos
           const std::vector<char> thin = sliver_flags(solid, parts, min_thickness);
           if (std::none_of(thin.begin(), thin.end(), [](char c) { return c != 0; }) &&
               !(defect && std::any_of(parts.begin(), parts.end(), [&](const Block& b) { return !defect(b).empty(); })))
-            spare = Spare{group, parts, names};
+            spare = Spare{group, parts, std::vector<char>(parts.size(), static_cast<char>(group_out)), names};
         }
       } else {
         const std::vector<char> thin = sliver_flags(solid, parts, min_thickness);
@@ -868,7 +870,6 @@ std::size_t recarve_slivers(const Mesh& solid, const Mesh& input, const Decompos
         else if (defect && std::any_of(parts.begin(), parts.end(), [&](const Block& b) { return !defect(b).empty(); }))
           why = "a block fails the export's check";
       }
-      const bool group_out = std::any_of(group.begin(), group.end(), [&](std::size_t k) { return sticks_out[k] != 0; });
       std::vector<char> parts_out(parts.size(), static_cast<char>(group_out));
       std::string how = "exactly";
       if (!why.empty() && result.tolerance > 0) {
@@ -908,9 +909,7 @@ std::size_t recarve_slivers(const Mesh& solid, const Mesh& input, const Decompos
   // can hold (elephant.off at 1e-3: block 35 with its neighbours 43 and 109).
   for (Spare& sp : spares) {
     if (!std::all_of(sp.group.begin(), sp.group.end(), [&](std::size_t k) { return alive[k] != 0; })) continue;
-    const bool out = std::any_of(sp.group.begin(), sp.group.end(), [&](std::size_t k) { return sticks_out[k] != 0; });
-    replace(sp.group, std::move(sp.parts), std::vector<char>(sp.group.size() + 1, static_cast<char>(out)), sp.names,
-            "exactly, one block more");
+    replace(sp.group, std::move(sp.parts), sp.parts_out, sp.names, "exactly, one block more");
   }
   if (removed == 0) return 0;
   std::vector<Block> kept;

@@ -56,7 +56,8 @@ bool classify_corefined(const std::vector<ExactMesh>& operands, const std::vecto
   std::vector<CGAL::Bbox_3> box(m);
   for (std::size_t a = 0; a < m; ++a) box[a] = PMP::bbox(given[a]);
   // 2. classify one interior point of every face against the other operands
-  //    (as given, see above)
+  //    as given (see union_surface(): the side of a point does not depend on
+  //    how an operand is refined, and the given coordinates are smaller)
   std::vector<std::unique_ptr<Tree>> trees(m);
   std::vector<std::unique_ptr<SideOf>> sides(m);
   for (std::size_t b = 0; b < m; ++b) {

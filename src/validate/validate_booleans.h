@@ -22,7 +22,8 @@ double exact_volume_outside(const Mesh& block, const Mesh& solid);
 //! What of a block lies outside the input solid (validate's check 4, and
 //! the part check 10 measures).
 struct OutsidePart {
-  double volume = 0.0;       // vol(block \ solid), as volume_outside() (rounded coordinates)
+  double volume = 0.0;       // vol(block \ solid): as volume_outside() (rounded coordinates), or with
+                             // `boundary`, exactly from its faces
   std::optional<Mesh> mesh;  // block \ solid (closed, rounded to doubles) when the local boolean gave it
   //! Without `mesh` (CGAL's difference is not a 2-manifold: the part touches
   //! itself along an edge or at a point): the faces bounding block \ solid,
