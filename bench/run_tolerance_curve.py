@@ -57,7 +57,8 @@ def cell(row):
     text = f"{row.get('blocks')} / " + ("?" if dev is None else ("0" if dev == 0 else f"{dev:.2e}"))
     text += f" ({row['wall_s']:.0f} s)"
     if row["status"] != "valid":
-        failed = [c["name"].split(" ")[0] for c in row.get("checks") or [] if not c["passed"]]
+        failed = [run_sweep.CHECK_NAMES[i] if i < len(run_sweep.CHECK_NAMES) else c["name"]
+                  for i, c in enumerate(row.get("checks") or []) if not c["passed"]]
         text += " **validate fails" + (": " + ", ".join(failed) if failed else "") + "**"
     return text
 

@@ -2,7 +2,6 @@
 #include "subfab/decompose/remove_slivers.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Polygon_mesh_processing/distance.h>
 
 #include <algorithm>
 #include <cmath>
@@ -29,7 +28,6 @@
 namespace subfab {
 namespace {
 
-namespace PMP = CGAL::Polygon_mesh_processing;
 
 BoundingBox widened(BoundingBox box, double margin) {
   box.min.array() -= margin;
@@ -48,51 +46,6 @@ std::vector<int> faces_meeting(const Mesh& mesh, const BoundingBox& box) {
   return out;
 }
 
-//! The parts of `mesh`'s faces `faces` inside `box` (each face clipped to
-//! the box, Sutherland-Hodgman, and fanned into triangles): a soup.
-Mesh clipped_faces(const Mesh& mesh, const std::vector<int>& faces, const BoundingBox& box) {
-  Mesh out;
-  std::vector<Vec3> poly, next;
-  for (int f : faces) {
-    poly.clear();
-    for (int v : mesh.faces[static_cast<std::size_t>(f)]) poly.push_back(mesh.vertices[static_cast<std::size_t>(v)]);
-    for (int k = 0; k < 3 && !poly.empty(); ++k)
-      for (int side = 0; side < 2 && !poly.empty(); ++side) {
-        // keep s * (p[k] - bound) <= 0
-        const double bound = side == 0 ? box.max[k] : box.min[k];
-        const double sgn = side == 0 ? 1.0 : -1.0;
-        next.clear();
-        for (std::size_t i = 0; i < poly.size(); ++i) {
-          const Vec3& a = poly[i];
-          const Vec3& b = poly[(i + 1) % poly.size()];
-          const double da = sgn * (a[k] - bound), db = sgn * (b[k] - bound);
-          if (da <= 0) next.push_back(a);
-          if ((da < 0 && db > 0) || (da > 0 && db < 0)) {
-            Vec3 c = a + (b - a) * (da / (da - db));
-            c[k] = bound;
-            next.push_back(c);
-          }
-        }
-        poly.swap(next);
-      }
-    if (poly.size() < 3 || (poly[1] - poly[0]).cross(poly[2] - poly[0]).squaredNorm() == 0) continue;
-    const int base = static_cast<int>(out.vertices.size());
-    out.vertices.insert(out.vertices.end(), poly.begin(), poly.end());
-    for (std::size_t i = 1; i + 1 < poly.size(); ++i)
-      out.faces.push_back({base, base + static_cast<int>(i), base + static_cast<int>(i) + 1});
-  }
-  return out;
-}
-
-//! One-sided Hausdorff distance from `from` to `to` within `error` (CGAL's
-//! bounded-error algorithm); infinity when `to` is empty, 0 when `from` is.
-double hausdorff(const detail::DistanceMesh& from, const detail::DistanceMesh& to, double error) {
-  if (from.number_of_faces() == 0) return 0.0;
-  if (to.number_of_faces() == 0) return std::numeric_limits<double>::infinity();
-  const auto no_match = PMP::parameters::match_faces(false);
-  return PMP::bounded_error_Hausdorff_distance<CGAL::Sequential_tag>(from, to, error, no_match, no_match);
-}
-
 //! The bound (measure + error) of the deviation that dropping sliver `b`
 //! causes (see remove_slivers.h); `why` (when set and the bound exceeds T)
 //! says how far the input near it lies from the other blocks.
@@ -105,11 +58,11 @@ double drop_bound(const Mesh& solid, const std::vector<Block>& blocks, const std
     detail::append_distance_patch(others, blocks[k].mesh, nullptr);  // milled shapes too: they cover what they fill
   }
   const BoundingBox reach = widened(boxes[b], tolerance);
-  const Mesh near_input = clipped_faces(solid, faces_meeting(solid, reach), reach);
+  const Mesh near_input = detail::clipped_faces(solid, faces_meeting(solid, reach), reach);
   detail::DistanceMesh input_near;
   detail::append_distance_patch(input_near, near_input, nullptr);
   // The input surface near the sliver stays within T of another block.
-  const double covered = hausdorff(input_near, others, error);
+  const double covered = detail::one_sided_hausdorff(input_near, others, error);
   if (why && !(covered + error <= tolerance))
     *why = "the input near it lies " + std::to_string(covered / tolerance) + " T from the other blocks";
   return covered + error;

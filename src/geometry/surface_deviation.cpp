@@ -12,6 +12,7 @@
 #include <cmath>
 #include <array>
 #include <functional>
+#include <limits>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -53,6 +54,51 @@ void append_distance_patch(DistanceMesh& out, const Mesh& mesh, const std::vecto
     for (int f : *faces) add(mesh.faces[static_cast<std::size_t>(f)]);
   else
     for (const Triangle& t : mesh.faces) add(t);
+}
+
+double one_sided_hausdorff(const DistanceMesh& from, const DistanceMesh& to, double error) {
+  if (from.number_of_faces() == 0) return 0.0;
+  if (to.number_of_faces() == 0) return std::numeric_limits<double>::infinity();
+  namespace PMP = CGAL::Polygon_mesh_processing;
+  const auto no_match = PMP::parameters::match_faces(false);
+  return PMP::bounded_error_Hausdorff_distance<CGAL::Sequential_tag>(from, to, error, no_match, no_match);
+}
+
+Mesh clipped_faces(const Mesh& mesh, const std::vector<int>& faces, const BoundingBox& box) {
+  Mesh out;
+  std::vector<Vec3> poly, next;
+  for (int f : faces) {
+    poly.clear();
+    for (int v : mesh.faces[static_cast<std::size_t>(f)]) poly.push_back(mesh.vertices[static_cast<std::size_t>(v)]);
+    for (int k = 0; k < 3 && !poly.empty(); ++k)
+      for (int side = 0; side < 2 && !poly.empty(); ++side) {
+        // keep sgn * (p[k] - bound) <= 0
+        const double bound = side == 0 ? box.max[k] : box.min[k];
+        const double sgn = side == 0 ? 1.0 : -1.0;
+        next.clear();
+        for (std::size_t i = 0; i < poly.size(); ++i) {
+          const Vec3& a = poly[i];
+          const Vec3& b = poly[(i + 1) % poly.size()];
+          const double da = sgn * (a[k] - bound), db = sgn * (b[k] - bound);
+          if (da <= 0) next.push_back(a);
+          if ((da < 0 && db > 0) || (da > 0 && db < 0)) {
+            Vec3 c = a + (b - a) * (da / (da - db));
+            c[k] = bound;
+            next.push_back(c);
+          }
+        }
+        poly.swap(next);
+      }
+    if (poly.size() < 3) continue;
+    // fanned from the first corner; a fan triangle of zero area (three
+    // corners on a line) holds no point its neighbours do not: left out
+    const int base = static_cast<int>(out.vertices.size());
+    out.vertices.insert(out.vertices.end(), poly.begin(), poly.end());
+    for (std::size_t i = 1; i + 1 < poly.size(); ++i)
+      if ((poly[i] - poly[0]).cross(poly[i + 1] - poly[0]).squaredNorm() > 0)
+        out.faces.push_back({base, base + static_cast<int>(i), base + static_cast<int>(i) + 1});
+  }
+  return out;
 }
 
 SurfaceDeviation surface_deviation(const Mesh& input, const Mesh& reference, const Mesh& modified,

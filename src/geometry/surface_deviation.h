@@ -23,6 +23,18 @@ using DistanceMesh = CGAL::Surface_mesh<CGAL::Exact_predicates_inexact_construct
 //! distances do not depend on connectivity).
 void append_distance_patch(DistanceMesh& out, const Mesh& mesh, const std::vector<int>* faces);
 
+//! One-sided Hausdorff distance from `from` to `to` within `error` (model
+//! units, > 0; CGAL's bounded-error algorithm): 0 when `from` is empty,
+//! infinity when `to` is.
+double one_sided_hausdorff(const DistanceMesh& from, const DistanceMesh& to, double error);
+
+//! The parts inside the closed box `box` of `mesh`'s faces `faces`, each face
+//! clipped to the box (Sutherland-Hodgman in doubles: a new corner lies a few
+//! ulps of its coordinates from the face) and fanned into triangles: a soup,
+//! for distance queries near the box that must not see a long face's far
+//! parts (CAD parts' faces can span a third of the model).
+Mesh clipped_faces(const Mesh& mesh, const std::vector<int>& faces, const BoundingBox& box);
+
 struct SurfaceDeviation {
   double hausdorff = 0;  // symmetric Hausdorff distance, model units (CGAL bounded error, within `error_bound`)
   double mean = 0;       // area-weighted mean distance of the changed part of `modified` to `input`, model units

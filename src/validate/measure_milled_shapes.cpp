@@ -2,7 +2,6 @@
 // measure_milled_shapes(): every block's milled shape (milled_shape.cpp) and
 // how far it strays (CGAL bounded-error Hausdorff distances, exact booleans).
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Polygon_mesh_processing/distance.h>
 #include <CGAL/Surface_mesh.h>
 
 #include <algorithm>
@@ -123,15 +122,6 @@ std::vector<int> uncovered_faces(const MilledShape& milled, const Mesh& block, d
   return out;
 }
 
-//! One-sided Hausdorff distance from `from` to `to`, within `error` (model units).
-double hausdorff(const SurfaceMesh& from, const SurfaceMesh& to, double error) {
-  if (from.number_of_faces() == 0) return 0.0;
-  if (to.number_of_faces() == 0) return std::numeric_limits<double>::infinity();
-  namespace PMP = CGAL::Polygon_mesh_processing;
-  const auto no_match = PMP::parameters::match_faces(false);
-  return PMP::bounded_error_Hausdorff_distance<CGAL::Sequential_tag>(from, to, error, no_match, no_match);
-}
-
 //! The box around `box` within `margin` of it.
 BoundingBox widened(BoundingBox box, double margin) {
   box.min.array() -= margin;
@@ -227,8 +217,8 @@ void measure_block(const Mesh& input, const OutsideDistance& outside, const Mesh
     const BoundingBox box = bounding_box(milled.mesh);
     append(to_both, input, nullptr, widened(box, box.diagonal() + error));
     append(to_both, block);
-    m.deviation_to_block = hausdorff(source, to_block, error);
-    m.deviation = hausdorff(source, to_both, error);
+    m.deviation_to_block = detail::one_sided_hausdorff(source, to_block, error);
+    m.deviation = detail::one_sided_hausdorff(source, to_both, error);
   }
   m.outside_volume = detail::exact_volume_outside(milled.mesh, input);
   m.outside_distance = outside.sup(milled.mesh, off_block, error);

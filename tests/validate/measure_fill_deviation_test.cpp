@@ -13,6 +13,7 @@
 #include "subfab/mesh/read_mesh.h"
 #include "subfab/validate/milled_shape.h"
 #include "subfab/validate/validate_decomposition.h"
+#include "support/box_shapes.h"
 #include "support/groove_shapes.h"
 #include "support/test_support.h"
 #include "validate/validate_booleans.h"
@@ -404,6 +405,37 @@ TEST(SolidColumns, ABlockOnTheInputHasNoOutsidePartAndDeviatesNothing) {
   EXPECT_EQ(d.to_input, 0.0);
   EXPECT_EQ(d.from_input, 0.0);
   EXPECT_LE(d.bound(), 0.01 + 1e-12);
+}
+
+TEST(MeasureFillDeviation, ACubeOfTwelveTrianglesIsMeasuredAsItsFinelyCutCopy) {
+  // The plate of ABlockStickingOutIsMeasuredFromItsFarthestPoint on a cube
+  // of 12 triangles (each face spanning the cube) and on the same cube cut
+  // into unit squares: the same surfaces, so the same distances, by the two
+  // reaches and by the local pass of measure_fills(). The measure clips the
+  // input faces to the box it measures in (issue 17: on pinion at 5e-4 the
+  // regions grown to hold long CAD faces whole were a third of the model).
+  const Mesh fine = voxel_mesh(cells_of_box({0, 0, 0}, {4, 4, 4}));
+  const Mesh coarse = test::make_box_mesh(Vec3(0, 0, 0), Vec3(4, 4, 4));
+  const Mesh plate = voxel_mesh(cells_of_box({1, 1, 0}, {2, 3, 7}));
+  for (const Mesh* solid : {&coarse, &fine}) {
+    const FillDeviationMeter meter(*solid);
+    const FillDeviation d = meter.measure(plate, {}, {.reach = 4.0, .error = 1e-3});
+    ASSERT_TRUE(d.failure.empty()) << d.failure;
+    EXPECT_NEAR(d.to_input, 3.0, 1e-3);
+    EXPECT_NEAR(d.from_input, 0.5, 1e-3);
+    for (double reach : {0.75, 4.0}) {
+      const FillDeviation local = measure_outside_part(*solid, plate, {.reach = reach, .error = 1e-3});
+      ASSERT_TRUE(local.failure.empty()) << local.failure;
+      // the local pass's bound is kept only within the reach; beyond it the
+      // two reaches measure, their value an upper bound (3 > 0.75)
+      EXPECT_GE(local.to_input, 3.0 - 1e-3) << reach;
+      EXPECT_GE(local.from_input, 0.5 - 1e-3) << reach;
+      if (reach > 3.0) {
+        EXPECT_NEAR(local.to_input, 3.0, 1e-3);
+        EXPECT_NEAR(local.from_input, 0.5, 1e-3);
+      }
+    }
+  }
 }
 
 TEST(MeasureFill, AgreesWithTheWholeBlockMeasureOnPiecesOfTheBunny) {

@@ -15,8 +15,11 @@
 //!
 //! FillDeviationMeter::measure() computes that distance near one filled
 //! block F (the others near it included), exactly where it matters:
-//!   1. Q = the input faces whose bounding box meets box(F) widened by the
-//!      reach r; R' = the box around box(F) and Q, widened by r (and a hair);
+//!   1. Q = the input surface within box(F) widened by the reach r (the
+//!      faces whose bounding box meets that box, clipped to it: a long face's
+//!      far part would only widen the region, and CAD parts' faces can span
+//!      a third of the model); R' = the box around box(F) and Q, widened by
+//!      r (and a hair);
 //!   2. V = (F ∪ the other filled blocks, clipped to R'' = R' shrunk by half
 //!      the hair) ∪ (S ∩ R'), by exact booleans (CGAL corefinement, exact
 //!      kernel, deterministic arena; the two clips' cut faces are never
@@ -48,9 +51,12 @@
 //! measure first with reach r1 = first_reach_fraction x the reach, and again
 //! with the whole reach only in the boxes whose bound exceeds r1 (the fill
 //! boxes of a block closer than twice the reach measured as one region).
-//! measure_fills() measures each box before that with measure_local() (V
-//! made around the box alone, no reach), using that ∂S away from every fill
-//! box lies on ∂S' (shown below): an upper bound, kept when <= the reach.
+//! measure_fills() measures each box before that with measure_local() (Q =
+//! the input surface in the box, V made around it and the input faces near
+//! it up to the reach), using that ∂S away from every fill box lies on ∂S'
+//! (shown below), and that only points of ∂S in the fill boxes can deviate
+//! (measure_fill() below; every fill box of every block is measured, with
+//! all the filled blocks): an upper bound, kept when <= the reach.
 //!
 //! measure_fill() (issue 17: the whole-box measure took > 9 min on max
 //! planck's big blocks) measures the same distance only where the milled
@@ -108,6 +114,11 @@ struct FillDeviationOptions {
                             // the reach, the two reaches only for the others; false: the two reaches only.
                             // measure() and measure_fill() measure one block and the input near it for
                             // merges (docs/decompose.md 8b): the two reaches always
+  double local_margin = 4.0;  // measure_local() only: V is made around the box and the input faces meeting it,
+                             // clipped to the box widened by max(reach, this x the box's diagonal): room for
+                             // the nearest points (a narrower room makes the bound exceed the reach more
+                             // often), without a long CAD face's far part (pinion at 5e-4: regions of a third
+                             // of the model when the faces were taken whole)
   const FillCoverMap* others_cover = nullptr;  // optional: an other block listed here with boxes covering
                                               // block \ solid is left out of a region none of them meets
                                               // (its part there lies in the solid: nothing changes; validate
@@ -165,7 +176,8 @@ class FillDeviationMeter {
                              const std::vector<BoundingBox>& fill, const FillDeviationOptions& options) const;
 
   //! An upper bound of the same distance near `core` with V made around
-  //! `core` alone (no reach), cheaper than measure_region() when the reach
+  //! `core` and the input faces meeting it, clipped to `core` widened by
+  //! FillDeviationOptions::local_margin (no reach around that), cheaper than measure_region() when the reach
   //! is large (issue 17: egea at 8.3e-2 of the diagonal). `outside` (from
   //! faces_outside()) marks the input faces that meet no box covering any
   //! filled block's fill: those lie on ∂S' (see the file comment), the
