@@ -114,11 +114,12 @@ struct FillDeviationOptions {
                             // the reach, the two reaches only for the others; false: the two reaches only.
                             // measure() and measure_fill() measure one block and the input near it for
                             // merges (docs/decompose.md 8b): the two reaches always
-  double local_margin = 4.0;  // measure_local() only: V is made around the box and the input faces meeting it,
-                             // clipped to the box widened by max(reach, this x the box's diagonal): room for
-                             // the nearest points (a narrower room makes the bound exceed the reach more
-                             // often), without a long CAD face's far part (pinion at 5e-4: regions of a third
-                             // of the model when the faces were taken whole)
+  double local_margin = 0.05;  // measure_local() only, fraction of the solid's bounding-box diagonal: V is made
+                               // around the box and the input faces meeting it, clipped to the box widened by
+                               // max(reach, this): room for the nearest points (a narrower room gives looser
+                               // bounds, more of them above the reach); a mesh's faces rarely reach this far
+                               // past a box (taken whole then, as before), a CAD part's long faces do (pinion
+                               // at 5e-4: each region was a third of the model with the faces whole)
   const FillCoverMap* others_cover = nullptr;  // optional: an other block listed here with boxes covering
                                               // block \ solid is left out of a region none of them meets
                                               // (its part there lies in the solid: nothing changes; validate
