@@ -15,7 +15,8 @@ curve has no more blocks than the thesis at no more deviation than the thesis's.
 
 Usage: bench/run_tolerance_curve.py [--subfab build/subfab] [--out DIR] [--threads N]
                                     [--only NAME ...] [--tolerances T ...]
-                                    [--timeout S] [--json-out FILE] [--merge FILE]
+                                    [--timeout S] [--json-out FILE] [--merge FILE ...]
+                                    [--table-only]
 Long (one to two hours on one thread): never run from the test suite.
 """
 import argparse
@@ -70,22 +71,24 @@ def main():
     ap.add_argument("--tolerances", nargs="*", type=float, default=CURVE_TOLERANCES)
     ap.add_argument("--timeout", type=float, default=1800.0, help="per command, seconds")
     ap.add_argument("--json-out", default=None, help="default OUT/curve.json")
-    ap.add_argument("--merge", default=None, help="carry over rows not run now from this JSON")
+    ap.add_argument("--merge", nargs="*", default=[], help="carry over rows not run now from these JSON files "
+                    "(a later file's row wins)")
+    ap.add_argument("--table-only", action="store_true", help="run nothing: the table of the --merge rows")
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
     json_out = args.json_out or os.path.join(args.out, "curve.json")
     sweep_args = argparse.Namespace(**vars(args), skip=None, no_validate=False, max_overhang=None, tolerance=None)
     runs = run_sweep.collect_runs(sweep_args)
     rows = {}
-    if args.merge and os.path.exists(args.merge):
-        with open(args.merge) as f:
+    for path in args.merge:
+        with open(path) as f:
             for r in json.load(f)["results"]:
                 rows[(r["name"], r["curve_tolerance"])] = r
     commit = subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"], capture_output=True,
                             text=True).stdout.strip()
     started = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
     # Tolerance by tolerance, so that an interrupted run still has whole columns.
-    for tol in args.tolerances:
+    for tol in ([] if args.table_only else args.tolerances):
         for run in runs:
             sweep_args.tolerance = tol
             r = run_sweep.run_one(sweep_args, run)
@@ -98,6 +101,7 @@ def main():
                            "results": list(rows.values())}, f, indent=1)
     tols = sorted({t for (_, t) in rows})
     names = [r["name"] for r in runs]
+    names = [n for n in names if any(k[0] == n for k in rows)]
     header = ["model", "settings", "thesis (T / blocks)"] + [f"T = {t:g}" for t in tols] + ["dominates the thesis"]
     lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
     for name in names:
@@ -110,7 +114,8 @@ def main():
                                        [cell(rows.get((name, t))) for t in tols] +
                                        [", ".join(f"T = {t:g}" for t in dom) or "no"]) + " |")
     print("\n".join(lines))
-    print(f"\ncommit {commit}, started {started}, load average {os.getloadavg()[0]:.1f}; rows in {json_out}")
+    commits = sorted({r.get("commit", "?") for r in rows.values()})
+    print(f"\nrows of commit(s) {', '.join(commits)}; load average {os.getloadavg()[0]:.1f}; rows in {json_out}")
     print(f"command: {' '.join(sys.argv)}")
     return 0
 
