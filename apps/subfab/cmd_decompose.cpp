@@ -183,6 +183,14 @@ int run_decompose(const DecomposeArgs& args) {
   if (result.repaired_input && !smoothed && !args.common.quiet) {
     const RepairReport& r = result.repair;
     std::ostringstream msg;
+    if (result.num_snapped_vertices > 0 && r.num_features == 0)
+      msg << "SNAPPED INPUT: the chosen frame is feasible once the input's coordinates are snapped within the "
+             "file's own rounding (+-"
+          << result.coordinate_rounding << " per coordinate as stored): " << result.num_snapped_vertices
+          << " vertices moved by at most " << r.max_deviation << " (" << r.max_deviation_fraction()
+          << " of the diagonal), mean " << r.mean_deviation << "; the blocks decompose " << args.outdir << "/"
+          << kRepairedInputFile << ", not the input (--no-orient keeps the input's frame and coordinates)";
+    else
     msg << "REPAIRED INPUT: " << r.num_features << " infeasible feature(s) (" << r.num_creases << " creases, "
         << r.num_vertices << " vertices) smoothed locally; the blocks decompose " << args.outdir << "/"
         << kRepairedInputFile << ", not the input: Hausdorff deviation " << r.max_deviation << " ("

@@ -82,7 +82,11 @@ std::vector<ValidationBlock> read_decomposition(const fs::path& outdir, Validati
       repairs.features = RecordedRepair{
           r.at("mesh").get<std::string>(), r.at("max_deviation").get<double>(),
           r.at("max_deviation_fraction").get<double>(), r.at("mean_deviation").get<double>(),
-          std::to_string(r.at("num_features").get<int>()) + " infeasible features smoothed"};
+          r.contains("precision_snap") && !r["precision_snap"].is_null() && r.at("num_features").get<int>() == 0
+              ? "coordinates snapped within the file's own rounding (" +
+                    std::to_string(r["precision_snap"].at("num_vertices_moved").get<std::size_t>()) +
+                    " vertices moved)"
+              : std::to_string(r.at("num_features").get<int>()) + " infeasible features smoothed"};
     }
     if (input_json.contains("mesh_repair") && !input_json["mesh_repair"].is_null()) {
       const Json& r = input_json["mesh_repair"];

@@ -23,6 +23,7 @@
 #include "subfab/core/parallel.h"
 #include "subfab/decompose/compute_field.h"
 #include "subfab/fidelity/find_infeasible_features.h"
+#include "subfab/geometry/coordinate_rounding.h"
 #include "subfab/decompose/grow_boxes.h"
 #include "subfab/decompose/merge_blocks.h"
 #include "decompose/single_precision_cleanup.h"
@@ -447,6 +448,34 @@ void repair_stage(const Mesh& input, const FeasibilityResult& infeasible, const 
   result.num_input_vertices = result.canonical.num_vertices();
   result.repaired_input = std::move(in_input);
   result.timings.repair += seconds_since(tr);
+}
+
+//! Stage 1's precision snap (OrientOptions::precision_snap_tolerance): the
+//! chosen frame is feasible only with the input's coordinates snapped within
+//! the file's own rounding, so the blocks decompose that snapped solid. Sets
+//! result.repaired_input to it in input coordinates (vertices the snap left
+//! where the default snap puts them keep the input's exact coordinates) and
+//! result.repair's deviations to the largest and mean vertex move (a bound
+//! of the Hausdorff distance: same faces). Throws AlgorithmError when the
+//! snapped solid is not a valid solid in the input frame.
+void precision_snap_stage(const Mesh& input, double diagonal, DecomposeResult& result) {
+  const Mesh plain = rotate_into_frame(input, result.rotation, OrientOptions{}.snap_tolerance);
+  Mesh in_input = repaired_in_input_frame(input, plain, result.canonical, result.rotation);
+  require_closed_solid_result(in_input, "the input snapped to its coordinates' precision is not a valid solid: ");
+  double largest = 0, sum = 0;
+  std::size_t moved = 0;
+  for (std::size_t i = 0; i < input.num_vertices(); ++i) {
+    const double d = (in_input.vertices[i] - input.vertices[i]).norm();
+    largest = std::max(largest, d);
+    sum += d;
+    moved += d > 0;
+  }
+  result.repair = RepairReport{};
+  result.repair.bbox_diagonal = diagonal;
+  result.repair.max_deviation = largest;
+  result.repair.mean_deviation = input.num_vertices() > 0 ? sum / static_cast<double>(input.num_vertices()) : 0.0;
+  result.num_snapped_vertices = moved;
+  result.repaired_input = std::move(in_input);
 }
 
 //! The undercut depths of `solid` for the allowances (tolerance_allowances.h).
@@ -1039,11 +1068,15 @@ DecomposeResult decompose_once(const Mesh& input, const DecomposeOptions& option
     if (options.orient) {
       OrientOptions o;
       o.progress = progress;
+      result.coordinate_rounding = coordinate_rounding(input);
+      if (diagonal > 0) o.precision_snap_tolerance = 4 * result.coordinate_rounding / diagonal;
       OrientResult oriented = orient_mesh(input, o);
       result.rotation = oriented.rotation;
+      result.frame_snap_tolerance = oriented.snap_tolerance;
       infeasible = std::move(oriented.infeasible);
     }
-    result.canonical = rotate_into_frame(input, result.rotation, OrientOptions{}.snap_tolerance);
+    result.canonical = rotate_into_frame(input, result.rotation, result.frame_snap_tolerance);
+    if (result.frame_snap_tolerance > OrientOptions{}.snap_tolerance) precision_snap_stage(input, diagonal, result);
     if (!options.orient) infeasible = find_infeasible_features(result.canonical);
     result.timings.orient = seconds_since(t);
     // Within a tolerance, creases and spikes whose faces may lean past

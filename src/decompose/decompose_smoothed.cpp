@@ -175,7 +175,7 @@ SmoothedDecomposeResult decompose_smoothed(const Mesh& input_mesh, const Smoothe
   smoothed_c.vertices.assign(result.canonical.vertices.begin(),
                              result.canonical.vertices.begin() + static_cast<std::ptrdiff_t>(n));
   smoothed_c.faces = input.faces;
-  const Mesh original_c = rotate_into_frame(input, result.rotation, OrientOptions{}.snap_tolerance);
+  const Mesh original_c = rotate_into_frame(input, result.rotation, result.frame_snap_tolerance);
   const Vec3 machine = options.decompose.machine ? *options.decompose.machine
                                                  : Vec3::Constant(std::numeric_limits<double>::infinity());
   const double diagonal = bounding_box(original_c).diagonal();

@@ -51,7 +51,12 @@ Json repair_json(const DecomposeResult& result, const ExportInfo& info) {
           {"max_deviation_fraction", r.max_deviation_fraction()},
           {"mean_deviation_fraction", r.mean_deviation_fraction()},
           {"hausdorff_error", r.hausdorff_error},
-          {"max_deviation_cap_fraction", info.options.max_deviation}};
+          {"max_deviation_cap_fraction", info.options.max_deviation},
+          {"precision_snap", result.num_snapped_vertices == 0
+                                 ? Json(nullptr)
+                                 : Json{{"coordinate_rounding", result.coordinate_rounding},
+                                        {"snap_tolerance", result.frame_snap_tolerance},
+                                        {"num_vertices_moved", result.num_snapped_vertices}}}};
 }
 
 }  // namespace
@@ -182,7 +187,7 @@ std::string decomposition_json(const Mesh& input, const DecomposeResult& result,
   if (result.tolerance > 0) {  // the frame blocks (within a tolerance only: the exact output stays as it was)
     double rounding = 0.0;
     for (const ExportedBlock& b : blocks) rounding = std::max(rounding, b.frame_rounding);
-    doc["frame"] = {{"snap_tolerance", kFrameSnapTolerance}, {"max_rounding", rounding}};
+    doc["frame"] = {{"snap_tolerance", result.frame_snap_tolerance}, {"max_rounding", rounding}};
   }
   const DecomposeOptions& o = info.options;
   doc["parameters"] = {{"max_height_fraction", limit_json(o.max_height_fraction)},

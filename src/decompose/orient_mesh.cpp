@@ -229,7 +229,7 @@ double orientation_energy(const Mesh& mesh, const Eigen::Matrix3d& rotation) {
 
 OrientResult orient_mesh(const Mesh& mesh, const OrientOptions& options) {
   if (options.num_directions < 1 || options.num_twists < 1 || options.num_refined < 0 || !(options.tolerance > 0) ||
-      !(options.keep_frame_area >= 0) || !(options.snap_tolerance >= 0) || !(options.keep_frame_tolerance >= 0) || !(options.min_relative_gain >= 0) ||
+      !(options.keep_frame_area >= 0) || !(options.snap_tolerance >= 0) || !(options.precision_snap_tolerance >= 0) || !(options.keep_frame_tolerance >= 0) || !(options.min_relative_gain >= 0) ||
       options.num_candidates < 1)
     throw InvalidArgumentError(
         "orientation options: num_directions and num_twists must be >= 1, num_refined >= 0, tolerance > 0, "
@@ -363,6 +363,17 @@ OrientResult orient_mesh(const Mesh& mesh, const OrientOptions& options) {
                               ? mesh
                               : rotate_into_frame(mesh, result.candidates[c].rotation, options.snap_tolerance);
       checks[c] = find_infeasible_features(turned);
+      result.candidates[c].snap_tolerance = options.snap_tolerance;
+      if (!checks[c].feasible() && !result.candidates[c].input_frame &&
+          options.precision_snap_tolerance > options.snap_tolerance) {
+        // Infeasible only through the file's rounding? (flat faces tilted by it)
+        FeasibilityResult snapped = find_infeasible_features(
+            rotate_into_frame(mesh, result.candidates[c].rotation, options.precision_snap_tolerance));
+        if (snapped.feasible()) {
+          checks[c] = std::move(snapped);
+          result.candidates[c].snap_tolerance = options.precision_snap_tolerance;
+        }
+      }
       result.candidates[c].num_infeasible = static_cast<long>(checks[c].size());
       if (checks[c].feasible()) feasible = c;
     }
@@ -415,6 +426,7 @@ OrientResult orient_mesh(const Mesh& mesh, const OrientOptions& options) {
         c.rotation = r;
         c.energy = e / area;
         c.num_infeasible = 0;
+        c.snap_tolerance = options.snap_tolerance;
         result.candidates.push_back(c);
         checks.emplace_back();
         feasible = result.candidates.size() - 1;
@@ -434,6 +446,7 @@ OrientResult orient_mesh(const Mesh& mesh, const OrientOptions& options) {
   const OrientCandidate& chosen = result.candidates[result.chosen];
   result.rotation = chosen.input_frame ? Eigen::Matrix3d::Identity() : chosen.rotation;
   result.energy_after = chosen.energy;
+  result.snap_tolerance = chosen.snap_tolerance > 0 ? chosen.snap_tolerance : options.snap_tolerance;
   if (options.progress) {
     std::ostringstream msg;
     msg << "orientation energy " << result.energy_before << " -> " << result.energy_after << " ("
@@ -445,6 +458,9 @@ OrientResult orient_mesh(const Mesh& mesh, const OrientOptions& options) {
         msg << "; " << result.num_searched << " coarse frames searched for a feasible one, "
             << (result.found_by_search ? "found" : "none found");
       if (!result.infeasible.feasible()) msg << "; none is free of them, the fewest kept";
+      if (result.snap_tolerance > options.snap_tolerance && !chosen.input_frame)
+        msg << "; feasible once coordinates within the file's own rounding are snapped ("
+            << result.snap_tolerance << " x diagonal)";
     }
     msg << ")";
     options.progress->info(msg.str());

@@ -15,6 +15,8 @@
 #include "subfab/core/parallel.h"
 #include "subfab/decompose/export_decomposition.h"
 #include "subfab/validate/validate_decomposition.h"
+#include "subfab/geometry/coordinate_rounding.h"
+#include "subfab/decompose/orient_mesh.h"
 #include "subfab/mesh/read_mesh.h"
 #include "support/test_support.h"
 
@@ -113,6 +115,30 @@ TEST(Decompose, FailsEarlyOnAnImpossibleCrease) {
   }
   EXPECT_EQ(std::count(progress.stages.begin(), progress.stages.end(), "field"), 0);
   EXPECT_EQ(std::count(progress.stages.begin(), progress.stages.end(), "grow"), 0);
+}
+
+// The star prism of OrientMesh.AFrameInfeasibleOnlyThroughTheFilesRoundingIsKeptWithThePrecisionSnap
+// (6 significant digits, turned obliquely): 76 exact blocks of a repaired
+// input before the precision snap, one block of the input snapped within its
+// rounding now, recorded as the decomposed solid.
+TEST(Decompose, ACadPrismWrittenWithSixDigitsIsOneBlockOfTheSnappedInput) {
+  const Mesh star = read_mesh(test::data_path("regression/star_prism_oblique_6digits.off"));
+  const double rounding = coordinate_rounding(star);
+  ASSERT_DOUBLE_EQ(rounding, 5e-6);
+  const DecomposeResult r = decompose(star, DecomposeOptions{});
+  ASSERT_EQ(r.blocks.size(), 1u);
+  EXPECT_GT(r.frame_snap_tolerance, OrientOptions{}.snap_tolerance);
+  EXPECT_EQ(r.coordinate_rounding, rounding);
+  ASSERT_TRUE(r.repaired_input.has_value());
+  EXPECT_EQ(r.repair.num_features, 0);
+  EXPECT_GT(r.num_snapped_vertices, 0u);
+  EXPECT_GT(r.repair.max_deviation, 0.0);
+  // within the file's own rounding (chains of snapped coordinates may span a few of it)
+  EXPECT_LE(r.repair.max_deviation, 4 * rounding);
+  ASSERT_EQ(r.repaired_input->faces, star.faces);
+  for (std::size_t i = 0; i < star.num_vertices(); ++i)
+    EXPECT_LE((r.repaired_input->vertices[i] - star.vertices[i]).norm(), r.repair.max_deviation);
+  expect_valid(*r.repaired_input, r, r.max_height);
 }
 
 class DecomposeRealModel : public ::testing::TestWithParam<const char*> {};

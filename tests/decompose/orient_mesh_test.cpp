@@ -9,6 +9,7 @@
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
 #include "subfab/fidelity/find_infeasible_features.h"
+#include "subfab/geometry/coordinate_rounding.h"
 #include "subfab/mesh/read_mesh.h"
 #include "support/box_shapes.h"
 #include "support/test_support.h"
@@ -269,6 +270,33 @@ TEST(OrientMesh, SearchesTheCoarseFramesWhenNoCandidateIsFeasible) {
   EXPECT_EQ(none.num_searched, 0u);
   EXPECT_FALSE(none.infeasible.feasible());
   EXPECT_EQ(none.num_rejected, none.candidates.size());
+}
+
+// A six-pointed star prism turned obliquely and written with 6 significant
+// digits (data/regression/README.md): its caps are planar and its walls
+// perpendicular to them only within the file's rounding, so in the frame
+// that aligns it (energy 1.12) the 1e-9 snap leaves hair-tilted faces whose
+// creases no axis sees: every candidate was infeasible and it was repaired
+// into 76 blocks. Snapped within its own rounding that frame is feasible.
+TEST(OrientMesh, AFrameInfeasibleOnlyThroughTheFilesRoundingIsKeptWithThePrecisionSnap) {
+  const Mesh star = read_mesh(test::data_path("regression/star_prism_oblique_6digits.off"));
+  const OrientResult plain = orient_mesh(star);
+  EXPECT_EQ(plain.snap_tolerance, OrientOptions{}.snap_tolerance);
+  EXPECT_FALSE(plain.infeasible.feasible());
+  OrientOptions o;
+  o.precision_snap_tolerance = 4 * coordinate_rounding(star) / bounding_box(star).diagonal();
+  ASSERT_GT(o.precision_snap_tolerance, o.snap_tolerance);
+  const OrientResult snapped = orient_mesh(star, o);
+  EXPECT_TRUE(snapped.infeasible.feasible());
+  EXPECT_EQ(snapped.snap_tolerance, o.precision_snap_tolerance);
+  EXPECT_EQ(snapped.num_rejected, 0u);
+  EXPECT_LT(snapped.energy_after, 1.2);
+  EXPECT_LT(snapped.energy_after, plain.energy_after);
+  EXPECT_TRUE(find_infeasible_features(rotate_into_frame(star, snapped.rotation, snapped.snap_tolerance)).feasible());
+  EXPECT_FALSE(find_infeasible_features(rotate_into_frame(star, snapped.rotation, o.snap_tolerance)).feasible());
+  // The precision snap is never used where the default one suffices.
+  const Mesh box = box_mesh({0, 0, 0}, {1, 2, 3});
+  EXPECT_EQ(orient_mesh(box, o).snap_tolerance, o.snap_tolerance);
 }
 
 TEST(OrientMesh, RejectsUnusableInput) {

@@ -21,6 +21,7 @@
 #include "subfab/core/progress.h"
 #include "subfab/decompose/carve_blocks.h"
 #include "subfab/fidelity/repair_infeasible_features.h"
+#include "subfab/geometry/rotate_into_frame.h"
 #include "subfab/mesh/mesh.h"
 
 namespace subfab {
@@ -105,6 +106,15 @@ struct DecomposeResult {
   // the canonical mesh before grow; the blocks decompose it, not the input.
   std::optional<Mesh> repaired_input;
   RepairReport repair;       // what the repair found and changed (num_features = 0: nothing repaired)
+  // rotate_into_frame()'s snap for the chosen frame (fraction of the turned
+  // bounding-box diagonal): kFrameSnapTolerance, or, when only that made the
+  // frame feasible, 4 x the file's own coordinate rounding (orient_mesh(),
+  // OrientOptions::precision_snap_tolerance). Then repaired_input is the input
+  // with those coordinates snapped (back in input coordinates), `repair` has
+  // num_features = 0 and the largest / mean vertex move as its deviations.
+  double frame_snap_tolerance = kFrameSnapTolerance;
+  double coordinate_rounding = 0;         // coordinate_rounding() of the input (model units; 0 = full precision)
+  std::size_t num_snapped_vertices = 0;   // input vertices the precision snap moved (0 when it was not used)
   double max_height = std::numeric_limits<double>::infinity();  // the height limit used (model units)
   double max_overhang_deg = 0.0;  // the overhang allowance used (degrees; 0 = exact)
   std::vector<Block> blocks; // the blocks, canonical frame

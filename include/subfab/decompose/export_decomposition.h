@@ -21,7 +21,11 @@
 //!              (OUTDIR-relative, input coordinates), "vertices", "faces", "num_features", "num_creases",
 //!              "num_vertices", "num_rounds", "num_faces_removed", "num_faces_new", "max_deviation",
 //!              "mean_deviation" (model units), "max_deviation_fraction", "mean_deviation_fraction" (x bbox
-//!              diagonal), "hausdorff_error" (model units), "max_deviation_cap_fraction"},
+//!              diagonal), "hausdorff_error" (model units), "max_deviation_cap_fraction", "precision_snap":
+//!              null, or when the frame is feasible only with the input's coordinates snapped within the
+//!              file's own rounding (then num_features = 0 and the deviations are the largest and mean vertex
+//!              move) {"coordinate_rounding" (model units), "snap_tolerance" (x turned bbox diagonal),
+//!              "num_vertices_moved"}},
 //!              "mesh_repair": null, or after `decompose --repair` changed the input the record of
 //!              mesh_repair_to_json() plus "mesh": "input_mesh_repaired.obj" (OUTDIR-relative): the solid
 //!              made of the input file, which "vertices", "faces" and "repair" then describe,

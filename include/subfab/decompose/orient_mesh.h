@@ -27,7 +27,9 @@
 //!      axes (see OrientOptions::keep_frame_area);
 //!   5. feasibility (find_infeasible_features.h): the first candidate in
 //!      preference order whose frame has no crease or corner that no
-//!      axis-aligned height-field box can cover;
+//!      axis-aligned height-field box can cover (with the input's own
+//!      coordinate rounding snapped when only that makes it feasible:
+//!      OrientOptions::precision_snap_tolerance);
 //!   6. if every candidate has some (typical of CAD parts with sharp oblique
 //!      creases: the energy optima put a crease where no axis sees both of
 //!      its faces), the coarse frames of step 2 are tested in order of
@@ -76,6 +78,14 @@ struct OrientOptions {
   // axis-aligned, and exact validity sees any tilt (a turned-back box would
   // need many blocks, or none would fit its corners).
   double snap_tolerance = kFrameSnapTolerance;  // 1e-9: fraction of the bounding-box diagonal (0 = no snapping)
+  // The input's own coordinate rounding, as a snap (fraction of the diagonal;
+  // decompose() sets 4 x coordinate_rounding() / diagonal, the most two points
+  // of one plane of the designer's model can differ along an axis after the
+  // turn). A candidate frame that snap_tolerance leaves with infeasible
+  // features is tested again with this snap (when larger), and kept with it
+  // when that makes it feasible: its infeasibility was the file's rounding
+  // (pinion.off, 6 digits: 872 exact blocks in a worse frame, 1 here). 0 = off.
+  double precision_snap_tolerance = 0;
   int num_candidates = 6;       // best distinct local optima refined exactly and ranked (besides the input frame)
   bool check_feasibility = true;  // skip candidate frames with infeasible creases/corners (find_infeasible_features)
   // Step 6: number of face tests (frames x faces of the exact feasibility
@@ -95,6 +105,7 @@ struct OrientCandidate {
   double energy = 0;          // E(rotation)
   bool input_frame = false;   // the identity (the input's own frame)
   long num_infeasible = -1;   // infeasible edges + vertices in this frame (-1: not checked)
+  double snap_tolerance = 0;  // the snap the frame's check used (OrientOptions::snap_tolerance or precision_snap_tolerance)
 };
 
 //! Result of orient_mesh().
@@ -108,6 +119,8 @@ struct OrientResult {
   std::size_t num_searched = 0;  // coarse frames tested in step 6 (0 when a candidate was feasible)
   bool found_by_search = false;  // the chosen frame comes from step 6 (it is the last candidate)
   FeasibilityResult infeasible;  // infeasible features of the chosen frame (empty when feasible or unchecked)
+  double snap_tolerance = 0;     // rotate_into_frame()'s snap for the chosen frame (precision_snap_tolerance when
+                                 // only that made it feasible, else snap_tolerance)
 };
 
 // rotate_into_frame() (the mesh in a frame, as decompose() turns it): subfab/geometry/rotate_into_frame.h
