@@ -74,6 +74,8 @@ void check_options(const DecomposeOptions& o) {
     throw InvalidArgumentError("tolerance_depth_fractions must be positive finite numbers (at least one)");
   if (!(o.fallback_tolerance_fraction >= 0) || !std::isfinite(o.fallback_tolerance_fraction))
     throw InvalidArgumentError("the fallback tolerance must be a fraction of the bounding-box diagonal >= 0");
+  if (!(o.max_precision_snap >= 0) || !std::isfinite(o.max_precision_snap))
+    throw InvalidArgumentError("the precision snap's cap must be a fraction of the bounding-box diagonal >= 0");
   if (!(o.fallback_min_carve_gain >= 0 && o.fallback_min_carve_gain < 1))
     throw InvalidArgumentError("the fallback's minimum carve gain must lie in [0, 1)");
   if (!(o.sliver_thickness >= 0) || !std::isfinite(o.sliver_thickness))
@@ -1069,7 +1071,8 @@ DecomposeResult decompose_once(const Mesh& input, const DecomposeOptions& option
       OrientOptions o;
       o.progress = progress;
       result.coordinate_rounding = coordinate_rounding(input);
-      if (diagonal > 0) o.precision_snap_tolerance = 4 * result.coordinate_rounding / diagonal;
+      if (diagonal > 0)
+        o.precision_snap_tolerance = std::min(4 * result.coordinate_rounding / diagonal, options.max_precision_snap);
       OrientResult oriented = orient_mesh(input, o);
       result.rotation = oriented.rotation;
       result.frame_snap_tolerance = oriented.snap_tolerance;

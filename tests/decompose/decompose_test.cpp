@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "support/block_test_shapes.h"
@@ -139,6 +140,30 @@ TEST(Decompose, ACadPrismWrittenWithSixDigitsIsOneBlockOfTheSnappedInput) {
   for (std::size_t i = 0; i < star.num_vertices(); ++i)
     EXPECT_LE((r.repaired_input->vertices[i] - star.vertices[i]).norm(), r.repair.max_deviation);
   expect_valid(*r.repaired_input, r, r.max_height);
+  // --exact takes the snap (it is below the file's precision); without it
+  // (cap 0) every frame has features no block covers, and --exact refuses.
+  DecomposeOptions exact;
+  exact.repair = false;
+  EXPECT_EQ(decompose(star, exact).blocks.size(), 1u);
+  exact.max_precision_snap = 0;
+  EXPECT_THROW(decompose(star, exact), AlgorithmError);
+}
+
+// A U-shaped bracket turned obliquely and written as binary STL (float32,
+// data/regression/README.md): 77 blocks of a repaired input before, one block
+// now; written with 17 digits the same bracket needs no snap.
+TEST(Decompose, AnObliqueCadBracketInBinaryStlIsOneBlock) {
+  const Mesh bracket = read_mesh(test::data_path("regression/u_bracket_oblique_float32.stl"));
+  const double rounding = coordinate_rounding(bracket);
+  ASSERT_GT(rounding, 0.0);
+  ASSERT_LT(rounding, 1e-6);  // float32 at coordinates below 2
+  const DecomposeResult r = decompose(bracket, DecomposeOptions{});
+  ASSERT_EQ(r.blocks.size(), 1u);
+  ASSERT_TRUE(r.repaired_input.has_value());
+  EXPECT_EQ(r.repair.num_features, 0);
+  EXPECT_GT(r.num_snapped_vertices, 0u);
+  EXPECT_LE(r.repair.max_deviation, 4 * rounding);
+  expect_valid(*r.repaired_input, r, r.max_height);
 }
 
 class DecomposeRealModel : public ::testing::TestWithParam<const char*> {};
@@ -175,6 +200,11 @@ TEST(Decompose, RejectsBadOptions) {
   for (double bad : {-1.0, 46.0, std::nan("")}) {
     o = {};
     o.max_overhang_deg = bad;
+    EXPECT_THROW(decompose(cube, o), InvalidArgumentError) << bad;
+  }
+  for (double bad : {-1e-6, std::nan(""), std::numeric_limits<double>::infinity()}) {
+    o = {};
+    o.max_precision_snap = bad;
     EXPECT_THROW(decompose(cube, o), InvalidArgumentError) << bad;
   }
   for (double bad : {-0.1, 1.0, std::nan("")}) {

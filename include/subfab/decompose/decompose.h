@@ -38,6 +38,14 @@ struct DecomposeOptions {
   bool repair = true;           // false: --exact, refuse (AlgorithmError) when the chosen frame has infeasible
                                 // features instead of repairing them (repair_infeasible_features, 4.3.5)
   double max_deviation = 0.005; // --max-deviation: cap on the repair's Hausdorff distance, x bbox diagonal (> 0)
+  // Cap on the orientation's precision snap (x bbox diagonal; 0 = never snap
+  // beyond the 1e-9 frame snap): a frame infeasible only through the file's
+  // own coordinate rounding is snapped by 4 x that rounding, at most this
+  // (orient_mesh(), OrientOptions::precision_snap_tolerance). Files with 6
+  // significant digits need 1e-6 to 8e-6; the cap keeps coordinates that are
+  // round numbers by design (a part drawn on a 1 mm grid reads as 1 digit,
+  // +-0.5 mm) from being snapped by their apparent rounding.
+  double max_precision_snap = 1e-5;
   double max_overhang_deg = 0.0; // --max-overhang: faces may lean up to this many degrees past vertical off the
                                  // base ([0, 45]; 0 = exact height fields). A 3-axis machine cannot cut such
                                  // faces (it leaves material under them); the thesis's blocks have them.
