@@ -29,8 +29,13 @@ double coordinate_rounding(const Mesh& mesh) {
       if (!std::isfinite(x)) return 0;
       largest = std::max(largest, std::abs(x));
       float32 = float32 && static_cast<double>(static_cast<float>(x)) == x;
-      if (x == 0 || digits > 17) continue;
+      if (digits > 9) {  // past 9 digits only float32 matters
+        if (!float32) return 0;  // full double precision
+        continue;
+      }
+      if (x == 0) continue;
       while (digits <= 17 && !round_trips(x, digits)) ++digits;
+      if (digits > 9 && !float32) return 0;
     }
   if (!(largest > 0)) return 0;
   if (digits <= 9) return 0.5 * std::pow(10.0, std::floor(std::log10(largest)) - digits + 1);
