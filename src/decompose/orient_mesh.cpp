@@ -13,6 +13,7 @@
 
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
+#include "geometry/exact_normal_signs.h"
 
 namespace subfab {
 namespace {
@@ -218,6 +219,74 @@ Eigen::Matrix3d orthonormalize(const Eigen::Matrix3d& r) {
   return Eigen::Quaterniond(r).normalized().toRotationMatrix();
 }
 
+//! The frame a CAD part was drawn in, from its largest flat faces: z along
+//! the normal direction holding the most area, x along the one holding the
+//! most area among those perpendicular to it (within `angle` radians;
+//! directions grouped within `angle`, +n and -n together). None when no
+//! direction perpendicular to the first holds any area (a part with one flat
+//! face, or none). canonical = rotation x input.
+std::optional<Eigen::Matrix3d> design_frame(const Matrix3Xd& w, double angle) {
+  struct Direction {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();  // area-weighted unit normals, flipped onto the first one
+    double area = 0;
+  };
+  std::vector<Direction> directions;
+  std::vector<Eigen::Index> order(static_cast<std::size_t>(w.cols()));
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](Eigen::Index a, Eigen::Index b) { return w.col(a).norm() > w.col(b).norm(); });
+  const double same = std::cos(angle);
+  constexpr std::size_t kMaxDirections = 64;  // the largest faces' directions; a CAD part has few
+  for (Eigen::Index f : order) {
+    const double a = w.col(f).norm();
+    if (!(a > 0)) break;
+    const Eigen::Vector3d n = w.col(f) / a;
+    bool found = false;
+    for (Direction& d : directions) {
+      const Eigen::Vector3d u = d.sum.normalized();
+      const double c = n.dot(u);
+      if (std::abs(c) >= same) {
+        d.sum += (c > 0 ? a : -a) * n;
+        d.area += a;
+        found = true;
+        break;
+      }
+    }
+    if (!found && directions.size() < kMaxDirections) directions.push_back({a * n, a});
+  }
+  if (directions.size() < 2) return std::nullopt;
+  const auto largest = [&](auto&& keep) {
+    const Direction* best = nullptr;
+    for (const Direction& d : directions)
+      if (keep(d) && (!best || d.area > best->area)) best = &d;
+    return best;
+  };
+  const Direction* first = largest([](const Direction&) { return true; });
+  const Eigen::Vector3d z = first->sum.normalized();
+  const Direction* second =
+      largest([&](const Direction& d) { return &d != first && std::abs(d.sum.normalized().dot(z)) <= std::sin(angle); });
+  if (!second) return std::nullopt;
+  const Eigen::Vector3d x = (second->sum - second->sum.dot(z) * z).normalized();
+  Eigen::Matrix3d r;
+  r.row(0) = x.transpose();
+  r.row(1) = z.cross(x).transpose();
+  r.row(2) = z.transpose();
+  return r;
+}
+
+//! Fraction of the area of `mesh` whose normals lie exactly on an axis
+//! (two zero components, exact arithmetic on the coordinates as they are).
+double axis_aligned_area_fraction(const Mesh& mesh) {
+  const Matrix3Xd w = weighted_normals(mesh);
+  double aligned = 0, total = 0;
+  for (Eigen::Index f = 0; f < w.cols(); ++f) total += w.col(f).norm();
+  const auto signs = detail::exact_normal_signs(mesh);
+  for (std::size_t f = 0; f < signs.size(); ++f)
+    if ((signs[f][0] == 0) + (signs[f][1] == 0) + (signs[f][2] == 0) >= 2)
+      aligned += w.col(static_cast<Eigen::Index>(f)).norm();
+  return total > 0 ? aligned / total : 0.0;
+}
+
 }  // namespace
 
 double orientation_energy(const Mesh& mesh, const Eigen::Matrix3d& rotation) {
@@ -229,7 +298,7 @@ double orientation_energy(const Mesh& mesh, const Eigen::Matrix3d& rotation) {
 
 OrientResult orient_mesh(const Mesh& mesh, const OrientOptions& options) {
   if (options.num_directions < 1 || options.num_twists < 1 || options.num_refined < 0 || !(options.tolerance > 0) ||
-      !(options.keep_frame_area >= 0) || !(options.snap_tolerance >= 0) || !(options.precision_snap_tolerance >= 0) || !(options.keep_frame_tolerance >= 0) || !(options.min_relative_gain >= 0) ||
+      !(options.keep_frame_area >= 0) || !(options.snap_tolerance >= 0) || !(options.precision_snap_tolerance >= 0) || !(options.design_frame_angle >= 0) || !(options.keep_frame_tolerance >= 0) || !(options.min_relative_gain >= 0) ||
       options.num_candidates < 1)
     throw InvalidArgumentError(
         "orientation options: num_directions and num_twists must be >= 1, num_refined >= 0, tolerance > 0, "
@@ -347,6 +416,32 @@ OrientResult orient_mesh(const Mesh& mesh, const OrientOptions& options) {
     c.rotation = refined[s];
     c.energy = energies[s] / area;
     ranked_candidates.push_back({c, energies[s]});
+  }
+  // The frame the part was drawn in, from its largest flat faces (a CAD part
+  // exported at an angle): ahead of everything, like an input modelled in its
+  // axes, when keep_frame_area of the area then lies exactly on the axes (with
+  // the precision snap, as the check below takes it) and its energy is within
+  // keep_frame_tolerance of the best; else ranked by energy. Its energy is
+  // not refined (a refinement would turn the flat faces off the axes).
+  if (options.design_frame_angle > 0) {
+    if (const auto drawn = design_frame(w, options.design_frame_angle)) {
+      const Eigen::Matrix3d r = orthonormalize(closest_to_identity(*drawn, symmetries));
+      bool distinct = !r.isIdentity(1e-12);
+      for (std::size_t k = 0; k < ranked_candidates.size() && distinct; ++k)
+        distinct = ranked_candidates[k].candidate.input_frame
+                       ? symmetric_similarity(r, Eigen::Matrix3d::Identity(), symmetries) < same_frame
+                       : symmetric_similarity(r, ranked_candidates[k].candidate.rotation, symmetries) < same_frame;
+      if (distinct) {
+        OrientCandidate c;
+        c.rotation = r;
+        c.energy = l1_sum(w, r) / area;
+        c.design_frame = true;
+        const double snap = std::max(options.snap_tolerance, options.precision_snap_tolerance);
+        const bool drawn_in_axes = axis_aligned_area_fraction(rotate_into_frame(mesh, r, snap)) >= options.keep_frame_area &&
+                                   c.energy * area <= best_energy * (1 + options.keep_frame_tolerance);
+        ranked_candidates.push_back({c, drawn_in_axes ? -INFINITY : c.energy * area});
+      }
+    }
   }
   std::stable_sort(ranked_candidates.begin(), ranked_candidates.end(),
                    [](const Ranked& a, const Ranked& b) { return a.key < b.key; });

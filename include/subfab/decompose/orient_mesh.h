@@ -86,6 +86,15 @@ struct OrientOptions {
   // when that makes it feasible: its infeasibility was the file's rounding
   // (pinion.off, 6 digits: 872 exact blocks in a worse frame, 1 here). 0 = off.
   double precision_snap_tolerance = 0;
+  // A CAD part exported at an angle: the frame of its largest flat faces
+  // (z along the normal direction holding the most area, x along the largest
+  // perpendicular one; directions within this angle, radians, are one) is a
+  // candidate, preferred like an input modelled in its axes (keep_frame_area,
+  // keep_frame_tolerance) when that much area is then exactly on the axes
+  // (with the precision snap). The energy optimum can lie a few degrees off it
+  // (an oblique fandisk: 3 degrees about x, 0.3% lower energy, 15 exact blocks
+  // instead of its own frame's 11). 0 = no such candidate.
+  double design_frame_angle = 1e-4;
   int num_candidates = 6;       // best distinct local optima refined exactly and ranked (besides the input frame)
   bool check_feasibility = true;  // skip candidate frames with infeasible creases/corners (find_infeasible_features)
   // Step 6: number of face tests (frames x faces of the exact feasibility
@@ -106,6 +115,7 @@ struct OrientCandidate {
   bool input_frame = false;   // the identity (the input's own frame)
   long num_infeasible = -1;   // infeasible edges + vertices in this frame (-1: not checked)
   double snap_tolerance = 0;  // the snap the frame's check used (OrientOptions::snap_tolerance or precision_snap_tolerance)
+  bool design_frame = false;  // the frame of the largest flat faces (OrientOptions::design_frame_angle)
 };
 
 //! Result of orient_mesh().
