@@ -274,8 +274,8 @@ std::optional<Eigen::Matrix3d> design_frame(const Matrix3Xd& w, double angle) {
   return r;
 }
 
-//! Fraction of the area of `mesh` whose normals lie exactly on an axis
-//! (two zero components, exact arithmetic on the coordinates as they are).
+}  // namespace
+
 double axis_aligned_area_fraction(const Mesh& mesh) {
   const Matrix3Xd w = weighted_normals(mesh);
   double aligned = 0, total = 0;
@@ -286,8 +286,6 @@ double axis_aligned_area_fraction(const Mesh& mesh) {
       aligned += w.col(static_cast<Eigen::Index>(f)).norm();
   return total > 0 ? aligned / total : 0.0;
 }
-
-}  // namespace
 
 double orientation_energy(const Mesh& mesh, const Eigen::Matrix3d& rotation) {
   const Matrix3Xd w = weighted_normals(mesh);

@@ -15,9 +15,13 @@ Mesh rotate_into_frame(const Mesh& mesh, const Eigen::Matrix3d& rotation, double
   if (rotation.isIdentity(0.0)) return mesh;
   Mesh turned = mesh;
   transform_mesh(turned, rotation, Vec3::Zero());
-  const double tolerance = snap_tolerance * bounding_box(turned).diagonal();
-  if (!(tolerance > 0) || turned.vertices.empty()) return turned;
-  Mesh snapped = turned;
+  return snap_coordinates(turned, snap_tolerance);
+}
+
+Mesh snap_coordinates(const Mesh& mesh, double snap_tolerance) {
+  const double tolerance = snap_tolerance * bounding_box(mesh).diagonal();
+  if (!(tolerance > 0) || mesh.vertices.empty()) return mesh;
+  Mesh snapped = mesh;
   std::vector<std::size_t> order(snapped.vertices.size());
   for (int k = 0; k < 3; ++k) {
     std::iota(order.begin(), order.end(), 0);
@@ -33,10 +37,10 @@ Mesh rotate_into_frame(const Mesh& mesh, const Eigen::Matrix3d& rotation, double
       i = j;
     }
   }
-  const auto before = detail::exact_normal_signs(turned);
+  const auto before = detail::exact_normal_signs(mesh);
   const auto after = detail::exact_normal_signs(snapped);
   for (std::size_t f = 0; f < after.size(); ++f)
-    if (after[f] == std::array<std::int8_t, 3>{0, 0, 0} && before[f] != after[f]) return turned;
+    if (after[f] == std::array<std::int8_t, 3>{0, 0, 0} && before[f] != after[f]) return mesh;
   return snapped;
 }
 

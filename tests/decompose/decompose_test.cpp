@@ -166,6 +166,22 @@ TEST(Decompose, AnObliqueCadBracketInBinaryStlIsOneBlock) {
   expect_valid(*r.repaired_input, r, r.max_height);
 }
 
+// fandisk (CAD, drawn in its axes, 8 significant digits) has 9 vertices of
+// its face x = 0 at x = 1e-6 and 2e-6: CAD noise, within 4 x its rounding of
+// the face. Snapped, it is 6 exact blocks of the snapped input (11 with the
+// noise, one of them a 2.6e-7-thick slab before session 22's step 9c).
+TEST(Decompose, CadNoiseWithinTheFilesRoundingIsSnappedInThePartsOwnFrame) {
+  const Mesh fandisk = read_mesh(test::data_path("fandisk.obj"));
+  const DecomposeResult r = decompose(fandisk, DecomposeOptions{});
+  EXPECT_EQ(r.rotation, Eigen::Matrix3d::Identity());
+  EXPECT_GT(r.frame_snap_tolerance, OrientOptions{}.snap_tolerance);
+  ASSERT_TRUE(r.repaired_input.has_value());
+  EXPECT_GT(r.num_snapped_vertices, 0u);
+  EXPECT_LE(r.repair.max_deviation, 4 * r.coordinate_rounding);
+  EXPECT_LE(r.blocks.size(), 6u);
+  expect_valid(*r.repaired_input, r, r.max_height);
+}
+
 class DecomposeRealModel : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(DecomposeRealModel, ValidatesAndIsThreadIndependent) {

@@ -26,4 +26,10 @@ inline constexpr double kFrameSnapTolerance = 1e-9;
 //! Deterministic (plain IEEE operations): the same bits for the same input.
 Mesh rotate_into_frame(const Mesh& mesh, const Eigen::Matrix3d& rotation, double snap_tolerance);
 
+//! rotate_into_frame()'s snapping alone, in the mesh's own frame: along each
+//! axis, coordinates that differ by at most snap_tolerance x bbox diagonal
+//! (chains of them) set to the group's median, unless that makes a face
+//! degenerate (then `mesh` is returned as is). Vertex and face ids are kept.
+Mesh snap_coordinates(const Mesh& mesh, double snap_tolerance);
+
 }  // namespace subfab
