@@ -227,7 +227,8 @@ Eigen::Matrix3d orthonormalize(const Eigen::Matrix3d& r) {
 //! face, or none). canonical = rotation x input.
 std::optional<Eigen::Matrix3d> design_frame(const Matrix3Xd& w, double angle) {
   struct Direction {
-    Eigen::Vector3d sum = Eigen::Vector3d::Zero();  // area-weighted unit normals, flipped onto the first one
+    Eigen::Vector3d u;    // its largest face's unit normal (the group is every normal within `angle` of +-u)
+    Eigen::Vector3d sum;  // area-weighted unit normals, flipped onto u
     double area = 0;
   };
   std::vector<Direction> directions;
@@ -243,8 +244,7 @@ std::optional<Eigen::Matrix3d> design_frame(const Matrix3Xd& w, double angle) {
     const Eigen::Vector3d n = w.col(f) / a;
     bool found = false;
     for (Direction& d : directions) {
-      const Eigen::Vector3d u = d.sum.normalized();
-      const double c = n.dot(u);
+      const double c = n.dot(d.u);
       if (std::abs(c) >= same) {
         d.sum += (c > 0 ? a : -a) * n;
         d.area += a;
@@ -252,7 +252,7 @@ std::optional<Eigen::Matrix3d> design_frame(const Matrix3Xd& w, double angle) {
         break;
       }
     }
-    if (!found && directions.size() < kMaxDirections) directions.push_back({a * n, a});
+    if (!found && directions.size() < kMaxDirections) directions.push_back({n, a * n, a});
   }
   if (directions.size() < 2) return std::nullopt;
   const auto largest = [&](auto&& keep) {
