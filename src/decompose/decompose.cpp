@@ -461,7 +461,11 @@ void repair_stage(const Mesh& input, const FeasibilityResult& infeasible, const 
 //! of the Hausdorff distance: same faces). Throws AlgorithmError when the
 //! snapped solid is not a valid solid in the input frame.
 void precision_snap_stage(const Mesh& input, double diagonal, DecomposeResult& result) {
-  const Mesh plain = rotate_into_frame(input, result.rotation, OrientOptions{}.snap_tolerance);
+  // Only the vertices no snap moved keep the input's coordinates: one the
+  // 1e-9 snap moved but the precision snap left there would come back as
+  // the input's (up to that snap off its canonical plane: rotated couplingdown
+  // in float32 had base faces off its block's base).
+  const Mesh plain = rotate_into_frame(input, result.rotation, 0.0);
   Mesh in_input = repaired_in_input_frame(input, plain, result.canonical, result.rotation);
   require_closed_solid_result(in_input, "the input snapped to its coordinates' precision is not a valid solid: ");
   double largest = 0, sum = 0;

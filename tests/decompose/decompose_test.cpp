@@ -166,6 +166,24 @@ TEST(Decompose, AnObliqueCadBracketInBinaryStlIsOneBlock) {
   expect_valid(*r.repaired_input, r, r.max_height);
 }
 
+// couplingdown turned 0.9 rad and written as float32 STL (data/regression):
+// the precision snap's input-frame solid gave vertices the 1e-9 snap had
+// moved (but the precision snap had not) the input's coordinates back, up to
+// that snap off their canonical plane: a block's base faces were off its base
+// and decompose stopped ("not a valid block after rounding"). Only vertices
+// no snap moved keep the input's coordinates now.
+TEST(Decompose, AnObliqueFloat32CouplingKeepsItsBlocksValidAfterThePrecisionSnap) {
+  const Mesh coupling = read_mesh(test::data_path("regression/couplingdown_oblique_float32.stl"));
+  DecomposeResult r;
+  ASSERT_NO_THROW(r = decompose(coupling, DecomposeOptions{}));
+  EXPECT_GT(r.frame_snap_tolerance, OrientOptions{}.snap_tolerance);
+  ASSERT_TRUE(r.repaired_input.has_value());
+  EXPECT_FALSE(r.blocks.empty());
+  EXPECT_LE(r.repair.max_deviation, 4 * r.coordinate_rounding);
+  // the export rounds every block into the input frame and checks it (where it failed)
+  EXPECT_NO_THROW(make_exported_blocks(*r.repaired_input, r));
+}
+
 // fandisk (CAD, drawn in its axes, 8 significant digits) has 9 vertices of
 // its face x = 0 at x = 1e-6 and 2e-6: CAD noise, within 4 x its rounding of
 // the face. Snapped, it is 6 exact blocks of the snapped input (11 with the
