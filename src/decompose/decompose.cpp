@@ -455,8 +455,8 @@ void repair_stage(const Mesh& input, const FeasibilityResult& infeasible, const 
 //! Stage 1's precision snap (OrientOptions::precision_snap_tolerance): the
 //! chosen frame is feasible only with the input's coordinates snapped within
 //! the file's own rounding, so the blocks decompose that snapped solid. Sets
-//! result.repaired_input to it in input coordinates (vertices the snap left
-//! where the default snap puts them keep the input's exact coordinates) and
+//! result.repaired_input to it in input coordinates (vertices no snap moved
+//! keep the input's exact coordinates, the others are turned back) and
 //! result.repair's deviations to the largest and mean vertex move (a bound
 //! of the Hausdorff distance: same faces). Throws AlgorithmError when the
 //! snapped solid is not a valid solid in the input frame.

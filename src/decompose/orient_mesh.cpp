@@ -13,7 +13,6 @@
 
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
-#include "geometry/exact_normal_signs.h"
 
 namespace subfab {
 namespace {
@@ -274,17 +273,23 @@ std::optional<Eigen::Matrix3d> design_frame(const Matrix3Xd& w, double angle) {
   return r;
 }
 
+//! Area of the faces whose normal (a column of `w`) lies exactly on an axis:
+//! two of its components are zero.
+double aligned_area(const Matrix3Xd& w) {
+  double aligned = 0;
+  for (Eigen::Index f = 0; f < w.cols(); ++f) {
+    const Eigen::Vector3d n = w.col(f);
+    if ((n.array() == 0).count() >= 2) aligned += n.norm();
+  }
+  return aligned;
+}
+
 }  // namespace
 
 double axis_aligned_area_fraction(const Mesh& mesh) {
   const Matrix3Xd w = weighted_normals(mesh);
-  double aligned = 0, total = 0;
-  for (Eigen::Index f = 0; f < w.cols(); ++f) total += w.col(f).norm();
-  const auto signs = detail::exact_normal_signs(mesh);
-  for (std::size_t f = 0; f < signs.size(); ++f)
-    if ((signs[f][0] == 0) + (signs[f][1] == 0) + (signs[f][2] == 0) >= 2)
-      aligned += w.col(static_cast<Eigen::Index>(f)).norm();
-  return total > 0 ? aligned / total : 0.0;
+  const double total = w.colwise().norm().sum();
+  return total > 0 ? aligned_area(w) / total : 0.0;
 }
 
 double orientation_energy(const Mesh& mesh, const Eigen::Matrix3d& rotation) {
@@ -377,13 +382,8 @@ OrientResult orient_mesh(const Mesh& mesh, const OrientOptions& options) {
   const double energy_identity = l1_sum(w, Eigen::Matrix3d::Identity());
   double best_energy = energy_identity;
   for (double e : energies) best_energy = std::min(best_energy, e);
-  // Fraction of the area whose normals are exactly on an axis in the input frame.
-  double aligned_area = 0;
-  for (Eigen::Index f = 0; f < w.cols(); ++f) {
-    const Eigen::Vector3d n = w.col(f);
-    if ((n.array() == 0).count() >= 2) aligned_area += n.norm();
-  }
-  const bool axis_aligned_input = aligned_area >= options.keep_frame_area * area &&
+  // The area whose normals are exactly on an axis in the input frame.
+  const bool axis_aligned_input = aligned_area(w) >= options.keep_frame_area * area &&
                                   energy_identity <= best_energy * (1 + options.keep_frame_tolerance);
   struct Ranked {
     OrientCandidate candidate;

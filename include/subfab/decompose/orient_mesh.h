@@ -136,8 +136,8 @@ struct OrientResult {
 // rotate_into_frame() (the mesh in a frame, as decompose() turns it): subfab/geometry/rotate_into_frame.h
 
 //! Fraction of the area of `mesh` whose normals lie exactly on an axis (two
-//! zero components, decided exactly on the coordinates as they are): at least
-//! OrientOptions::keep_frame_area for a part drawn in this frame.
+//! components of the computed normal zero, as orient_mesh() tests the input
+//! frame): at least OrientOptions::keep_frame_area for a part drawn in this frame.
 double axis_aligned_area_fraction(const Mesh& mesh);
 
 //! E(R) above for the mesh's faces (zero-area faces contribute nothing).
