@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "support/block_test_shapes.h"
+#include "support/smooth_test_shapes.h"
 #include "subfab/mesh/write_mesh.h"
 #include "support/test_support.h"
 
@@ -186,6 +187,32 @@ TEST(DecomposeCli, ValidateChecksARecordedRepairedInput) {
   // A repaired mesh that is not MESH's repair (bounding boxes too far apart) is refused.
   fs::copy_file(test::data_path("cross.off"), dir / "input_repaired.off", fs::copy_options::overwrite_existing);
   EXPECT_EQ(run_subfab("validate " + quoted(mesh) + " " + quoted(dir) + " --quiet").exit_code, 2);
+}
+
+// --smooth-passes reaches the smoother (recorded as input.smoothing.passes):
+// more passes move the vertices farther, up to the cap; without --smooth it
+// is a usage error.
+TEST(DecomposeCli, SmoothPassesSetTheSmoothingStrength) {
+  const fs::path dir = test::temp_dir();
+  const fs::path mesh = dir / "bumped.obj";
+  write_mesh(test::bumped_cube(8, 0.2), mesh);
+  const auto smoothed_by = [&](int passes) {
+    const fs::path out = dir / ("p" + std::to_string(passes));
+    const auto r = run_subfab("decompose " + quoted(mesh) + " -o " + quoted(out) + " --no-orient --smooth=0.05 " +
+                              "--smooth-passes " + std::to_string(passes) + " --quiet --no-view --threads 1");
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    const auto doc = nlohmann::json::parse(slurp(out / "decomposition.json"));
+    const auto& s = doc.at("input").at("smoothing");
+    EXPECT_EQ(s.at("passes").get<int>(), passes);
+    EXPECT_LE(s.at("smoothed_max_deviation_fraction").get<double>(), 0.05 * (1 + 1e-9));
+    return s.at("smoothed_max_deviation_fraction").get<double>();
+  };
+  const double few = smoothed_by(3);
+  const double many = smoothed_by(60);
+  EXPECT_GT(many, 1.2 * few);  // measured: 0.034 x diagonal after 3 passes, 0.044 after 60
+  const auto usage = run_subfab("decompose " + quoted(mesh) + " -o " + quoted(dir / "u") + " --smooth-passes 5");
+  EXPECT_EQ(usage.exit_code, 1) << usage.output;
+  EXPECT_NE(usage.output.find("--smooth"), std::string::npos) << usage.output;
 }
 
 }  // namespace
