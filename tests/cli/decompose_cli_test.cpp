@@ -189,10 +189,10 @@ TEST(DecomposeCli, ValidateChecksARecordedRepairedInput) {
   EXPECT_EQ(run_subfab("validate " + quoted(mesh) + " " + quoted(dir) + " --quiet").exit_code, 2);
 }
 
-// --smooth-passes reaches the smoother (recorded as input.smoothing.passes):
-// more passes move the vertices farther, up to the cap; without --smooth it
-// is a usage error.
-TEST(DecomposeCli, SmoothPassesSetTheSmoothingStrength) {
+// --smooth-passes, --smooth-lambda and --smooth-mu reach the smoother
+// (recorded in input.smoothing): more passes move the vertices farther, up
+// to the cap; without --smooth they are usage errors.
+TEST(DecomposeCli, SmoothPassesAndFactorsSetTheSmoothingStrength) {
   const fs::path dir = test::temp_dir();
   const fs::path mesh = dir / "bumped.obj";
   write_mesh(test::bumped_cube(8, 0.2), mesh);
@@ -213,6 +213,20 @@ TEST(DecomposeCli, SmoothPassesSetTheSmoothingStrength) {
   const auto usage = run_subfab("decompose " + quoted(mesh) + " -o " + quoted(dir / "u") + " --smooth-passes 5");
   EXPECT_EQ(usage.exit_code, 1) << usage.output;
   EXPECT_NE(usage.output.find("--smooth"), std::string::npos) << usage.output;
+  // The filter's factors (the authors' tool used 0.89 / -0.9): recorded; out of range is a usage error.
+  const fs::path filter = dir / "filter";
+  const auto f = run_subfab("decompose " + quoted(mesh) + " -o " + quoted(filter) + " --no-orient --smooth=0.05 " +
+                            "--smooth-passes 3 --smooth-lambda 0.89 --smooth-mu -0.9 --quiet --no-view --threads 1");
+  ASSERT_EQ(f.exit_code, 0) << f.output;
+  const auto fdoc = nlohmann::json::parse(slurp(filter / "decomposition.json"));
+  EXPECT_EQ(fdoc.at("input").at("smoothing").at("lambda").get<double>(), 0.89);
+  EXPECT_EQ(fdoc.at("input").at("smoothing").at("mu").get<double>(), -0.9);
+  // other factors, another smoothing (3 passes: 0.0324 x diagonal against the default's 0.0335)
+  EXPECT_NE(fdoc.at("input").at("smoothing").at("smoothed_max_deviation_fraction").get<double>(), few);
+  const auto bad = run_subfab("decompose " + quoted(mesh) + " -o " + quoted(dir / "b") +
+                              " --smooth --smooth-lambda 1.5 --quiet --no-view");
+  EXPECT_EQ(bad.exit_code, 1) << bad.output;
+  EXPECT_NE(bad.output.find("lambda must be in (0, 1)"), std::string::npos) << bad.output;
 }
 
 }  // namespace

@@ -31,7 +31,7 @@
 //!              made of the input file, which "vertices", "faces" and "repair" then describe,
 //!              "smoothing": null, or after `decompose --smooth` (decompose_smoothed(), thesis 4.3.5) {"mesh":
 //!              "input_restored.obj" (the restored solid the blocks decompose), "smoothed_mesh":
-//!              "input_smoothed.obj", "cap_fraction", "passes" (Taubin passes applied, --smooth-passes),
+//!              "input_smoothed.obj", "cap_fraction", "passes" (Taubin passes applied, --smooth-passes), "lambda", "mu",
 //!              "num_blocks_smoothed", "num_blocks", "max_deviation",
 //!              "mean_deviation" (blocks' union vs the input, model units), "max_deviation_fraction",
 //!              "mean_deviation_fraction", "hausdorff_error", the smoothed model's deviations and the
