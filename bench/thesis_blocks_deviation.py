@@ -61,6 +61,10 @@ def closest_on_triangle(p, a, b, c):
         return min((a, b, c), key=lambda q: math.dist(p, q))
 
 
+def along(a, d, t):
+    return (a[0] + t * d[0], a[1] + t * d[1], a[2] + t * d[2])
+
+
 def closest_on_nondegenerate(p, a, b, c):
     ab, ac, ap = sub(b, a), sub(c, a), sub(p, a)
     d1, d2 = dot(ab, ap), dot(ac, ap)
@@ -72,23 +76,19 @@ def closest_on_nondegenerate(p, a, b, c):
         return b
     vc = d1 * d4 - d3 * d2
     if vc <= 0 and d1 >= 0 and d3 <= 0:
-        v = d1 / (d1 - d3)
-        return (a[0] + v * ab[0], a[1] + v * ab[1], a[2] + v * ab[2])
+        return along(a, ab, d1 / (d1 - d3))
     cp = sub(p, c)
     d5, d6 = dot(ab, cp), dot(ac, cp)
     if d6 >= 0 and d5 <= d6:
         return c
     vb = d5 * d2 - d1 * d6
     if vb <= 0 and d2 >= 0 and d6 <= 0:
-        w = d2 / (d2 - d6)
-        return (a[0] + w * ac[0], a[1] + w * ac[1], a[2] + w * ac[2])
+        return along(a, ac, d2 / (d2 - d6))
     va = d3 * d6 - d5 * d4
     if va <= 0 and (d4 - d3) >= 0 and (d5 - d6) >= 0:
-        w = (d4 - d3) / ((d4 - d3) + (d5 - d6))
-        return (b[0] + w * (c[0] - b[0]), b[1] + w * (c[1] - b[1]), b[2] + w * (c[2] - b[2]))
+        return along(b, sub(c, b), (d4 - d3) / ((d4 - d3) + (d5 - d6)))
     den = va + vb + vc
-    v, w = vb / den, vc / den
-    return (a[0] + ab[0] * v + ac[0] * w, a[1] + ab[1] * v + ac[1] * w, a[2] + ab[2] * v + ac[2] * w)
+    return along(along(a, ab, vb / den), ac, vc / den)
 
 
 class FaceGrid:
@@ -131,18 +131,21 @@ def register(model, blocks, cell):
     random.seed(1)
     sample = random.sample(blocks, min(2000, len(blocks)))
 
-    def near_count(points, radius):
+    def nearest_of(points):
+        """For each sample point, the nearest of `points` within a cell's neighbourhood (or None)."""
         bins = {}
         for p in points:
             bins.setdefault(tuple(math.floor(c / cell) for c in p), []).append(p)
-        count = 0
+        out = []
         for q in sample:
             k = [math.floor(c / cell) for c in q]
-            if any(math.dist(p, q) < radius
-                   for d in itertools.product((-1, 0, 1), repeat=3)
-                   for p in bins.get((k[0] + d[0], k[1] + d[1], k[2] + d[2]), ())):
-                count += 1
-        return count
+            cands = [p for d in itertools.product((-1, 0, 1), repeat=3)
+                     for p in bins.get((k[0] + d[0], k[1] + d[1], k[2] + d[2]), ())]
+            out.append((q, min(cands, key=lambda p: math.dist(p, q)) if cands else None))
+        return out
+
+    def near_count(points, radius):
+        return sum(1 for q, p in nearest_of(points) if p is not None and math.dist(p, q) < radius)
 
     best = max(((near_count(transformed(model, perm, signs), cell / 2), perm, signs)
                 for perm in itertools.permutations(range(3))
@@ -150,19 +153,9 @@ def register(model, blocks, cell):
     _, perm, signs = best
     offset = [0.0, 0.0, 0.0]
     for _ in range(10):  # translation-only ICP on nearest vertices
-        points = transformed(model, perm, signs, offset)
-        bins = {}
-        for p in points:
-            bins.setdefault(tuple(math.floor(c / cell) for c in p), []).append(p)
         acc, n = [0.0, 0.0, 0.0], 0
-        for q in sample:
-            k = [math.floor(c / cell) for c in q]
-            cands = [p for d in itertools.product((-1, 0, 1), repeat=3)
-                     for p in bins.get((k[0] + d[0], k[1] + d[1], k[2] + d[2]), ())]
-            if not cands:
-                continue
-            p = min(cands, key=lambda p: math.dist(p, q))
-            if math.dist(p, q) < cell / 2:
+        for q, p in nearest_of(transformed(model, perm, signs, offset)):
+            if p is not None and math.dist(p, q) < cell / 2:
                 acc = [acc[i] + q[i] - p[i] for i in range(3)]
                 n += 1
         step = [a / max(n, 1) for a in acc]
@@ -220,7 +213,7 @@ def main(folders):
         name = os.path.basename(os.path.normpath(folder))
         print('%s: %d blocks; frame: axes %s signs %s offset (%.3g, %.3g, %.3g) x diagonal, %.0f%% of block vertices '
               'within %.0e x diagonal of an input vertex' % (name, len(paths), perm, signs, *(o / diagonal for o in offset),
-                                                            100 * matched, 0.005))
+                                                            100 * matched, cell / 2 / diagonal))
         print('  input vertices -> blocks:  ' + fmt(measured))
         smooth_path = os.path.join(folder, 'smooth.obj')
         if os.path.exists(smooth_path):

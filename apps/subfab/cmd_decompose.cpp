@@ -44,9 +44,7 @@ struct DecomposeArgs {
   int tolerance_rounds = DecomposeOptions{}.tolerance_rounds;
   bool tolerance_given = false;  // --tolerance or --tolerance-abs on the command line (even 0)
   std::optional<double> smooth;  // --smooth [F]: smoothing cap, fraction of the diagonal
-  int smooth_passes = SmoothOptions{}.num_passes;  // --smooth-passes N
-  double smooth_lambda = SmoothOptions{}.lambda;    // --smooth-lambda L
-  double smooth_mu = SmoothOptions{}.mu;            // --smooth-mu M
+  SmoothOptions smoothing;        // with --smooth: --smooth-passes, --smooth-lambda, --smooth-mu
   bool no_view = false;
   RepairInputOptions repair;
   CommonOptions common;
@@ -73,13 +71,13 @@ Vec3 parse_machine(const std::string& text) {
 }
 
 //! The "input"."smoothing" record of decomposition.json (and of --json).
-nlohmann::ordered_json smoothing_record(const SmoothedDecomposeReport& r, double cap, double lambda, double mu) {
+nlohmann::ordered_json smoothing_record(const SmoothedDecomposeReport& r, const SmoothOptions& o) {
   return {{"mesh", kRestoredInputFile},
           {"smoothed_mesh", kSmoothedInputFile},
-          {"cap_fraction", cap},
+          {"cap_fraction", o.max_deviation},
           {"passes", r.smooth.num_passes},
-          {"lambda", lambda},
-          {"mu", mu},
+          {"lambda", o.lambda},
+          {"mu", o.mu},
           {"num_blocks_smoothed", r.num_blocks_smoothed},
           {"num_blocks", r.num_blocks},
           {"max_deviation", r.max_deviation},
@@ -129,12 +127,10 @@ int run_decompose(const DecomposeArgs& args) {
   if (args.smooth) {  // thesis 4.3.5: smooth, decompose, restore the details, carve again
     SmoothedDecomposeOptions so;
     so.decompose = options;
+    so.smooth = args.smoothing;
     so.smooth.max_deviation = *args.smooth;
-    so.smooth.num_passes = args.smooth_passes;
-    so.smooth.lambda = args.smooth_lambda;
-    so.smooth.mu = args.smooth_mu;
     smoothed = decompose_smoothed(mesh, so);
-    smoothing = smoothing_record(smoothed->report, *args.smooth, args.smooth_lambda, args.smooth_mu);
+    smoothing = smoothing_record(smoothed->report, so.smooth);
   }
   const DecomposeResult result = smoothed ? std::move(smoothed->decomposition) : decompose(mesh, options);
   std::vector<ExportedBlock> blocks;
@@ -388,20 +384,20 @@ void add_decompose_options(CLI::App& sub, DecomposeArgs& args) {
       ->expected(0, 1)
       ->default_str("0.005")
       ->check(CLI::NonNegativeNumber);
-  sub.add_option("--smooth-passes", args.smooth_passes,
+  sub.add_option("--smooth-passes", args.smoothing.num_passes,
                  "With --smooth: Taubin passes (as `subfab smooth --passes`). The cap F binds only when the passes "
                  "move vertices that far: 100 passes move max_planck's at most ~0.006 x diagonal; the thesis's own "
                  "smoothed statues moved theirs up to 0.017 (about 8000 passes here)")
       ->check(CLI::Range(1, 100000))
       ->needs(smooth_option);
-  sub.add_option("--smooth-lambda", args.smooth_lambda,
+  sub.add_option("--smooth-lambda", args.smoothing.lambda,
                  "With --smooth: Taubin shrink factor, in (0, 1) (as `subfab smooth --lambda`; 0.89 with "
                  "--smooth-mu -0.9, the defaults of the authors' own tool, give fewer blocks at the same deviation "
                  "on max_planck: bench/RESULTS.md)")
-      ->default_val(args.smooth_lambda)
+      ->default_val(args.smoothing.lambda)
       ->needs(smooth_option);
-  sub.add_option("--smooth-mu", args.smooth_mu, "With --smooth: Taubin inflate factor, in (-1, -lambda)")
-      ->default_val(args.smooth_mu)
+  sub.add_option("--smooth-mu", args.smoothing.mu, "With --smooth: Taubin inflate factor, in (-1, -lambda)")
+      ->default_val(args.smoothing.mu)
       ->needs(smooth_option);
   sub.add_flag("--no-view", args.no_view, "Do not write OUTDIR/view.html (the 3D view in the browser) and OUTDIR/assembly.html (cut list and "
                "gluing order; `subfab assemble` writes it later, also in mm)");
