@@ -5,6 +5,7 @@
 //! (ready to mill: direction +Z, base on z = 0), and unless --no-view
 //! OUTDIR/view.html and OUTDIR/assembly.html (src/view).
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <limits>
@@ -43,6 +44,7 @@ struct DecomposeArgs {
   double tolerance_floors = DecomposeOptions{}.tolerance_floor_scale;
   int tolerance_rounds = DecomposeOptions{}.tolerance_rounds;
   bool tolerance_given = false;  // --tolerance or --tolerance-abs on the command line (even 0)
+  bool tolerance_fraction_given = false;  // --tolerance on the command line
   std::optional<double> smooth;  // --smooth [F]: smoothing cap, fraction of the diagonal
   SmoothOptions smoothing;        // with --smooth: --smooth-passes, --smooth-lambda, --smooth-mu
   bool no_view = false;
@@ -72,7 +74,33 @@ Vec3 parse_machine(const std::string& text) {
 
 //! The "input"."smoothing" record of decomposition.json (and of --json).
 nlohmann::ordered_json smoothing_record(const SmoothedDecomposeReport& r, const SmoothOptions& o) {
+  if (r.within_tolerance)  // decomposed within a tolerance, not restored: the blocks decompose the smoothed model
+    return {{"mesh", kSmoothedInputFile},
+            {"smoothed_mesh", kSmoothedInputFile},
+            {"restored", false},
+            {"cap_fraction", o.max_deviation},
+            {"passes", r.smooth.num_passes},
+            {"lambda", o.lambda},
+            {"mu", o.mu},
+            {"num_blocks", r.num_blocks},
+            // the smoothed model (what the blocks decompose) from the input: its vertices' largest move
+            // bounds the Hausdorff distance (measured within hausdorff_error: smoothed_max_deviation_fraction)
+            {"max_deviation", r.decomposed_deviation},
+            {"mean_deviation", r.smoothed_mean_deviation},
+            {"max_deviation_fraction", r.fraction(r.decomposed_deviation)},
+            {"mean_deviation_fraction", r.fraction(r.smoothed_mean_deviation)},
+            {"hausdorff_error", r.smooth.hausdorff_error},
+            {"smoothed_max_deviation_fraction", r.fraction(r.smooth.hausdorff)},
+            {"smoothed_mean_deviation_fraction", r.fraction(r.smoothed_mean_deviation)},
+            {"tolerance", r.tolerance},
+            {"tolerance_fraction", r.fraction(r.tolerance)},
+            // the blocks from the input: smoothing + the tolerance's measured bound (triangle inequality)
+            {"total_deviation_bound", r.max_deviation},
+            {"total_deviation_bound_fraction", r.fraction(r.max_deviation)},
+            {"sliver_floor", r.sliver_floor},
+            {"smooth_seconds", r.smooth.seconds}};
   return {{"mesh", kRestoredInputFile},
+          {"restored", true},
           {"smoothed_mesh", kSmoothedInputFile},
           {"cap_fraction", o.max_deviation},
           {"passes", r.smooth.num_passes},
@@ -109,6 +137,9 @@ int run_decompose(const DecomposeArgs& args) {
   options.max_overhang_deg = args.max_overhang;
   options.tolerance_fraction = args.tolerance;
   options.tolerance_abs = args.tolerance_abs;
+  // --tolerance-abs alone: the fraction must not bound it (the smaller wins,
+  // and 0 would mean exact blocks); a whole diagonal bounds nothing.
+  if (!args.tolerance_fraction_given && std::isfinite(args.tolerance_abs)) options.tolerance_fraction = 1.0;
   options.tolerance_floor_scale = args.tolerance_floors;
   options.tolerance_rounds = args.tolerance_rounds;
   // Where the thin-feature repair gives up, decompose within 5e-4 x diagonal
@@ -148,7 +179,9 @@ int run_decompose(const DecomposeArgs& args) {
     std::error_code ec;
     for (const char* name : {kRepairedInputFile, kRestoredInputFile, kSmoothedInputFile})
       std::filesystem::remove(dir / name, ec);
-    if (smoothed) {
+    if (smoothed && smoothed->report.within_tolerance) {
+      write_mesh(*result.repaired_input, dir / kSmoothedInputFile);  // what the blocks decompose
+    } else if (smoothed) {
       write_mesh(*result.repaired_input, dir / kRestoredInputFile);
       write_mesh(smoothed->smoothed, dir / kSmoothedInputFile);
     } else if (result.repaired_input) {
@@ -172,7 +205,19 @@ int run_decompose(const DecomposeArgs& args) {
       write_assembly_sheet(args.outdir, sheet);
     });
   }
-  if (smoothed && !args.common.quiet) {
+  if (smoothed && smoothed->report.within_tolerance && !args.common.quiet) {
+    const SmoothedDecomposeReport& r = smoothed->report;
+    std::ostringstream msg;
+    msg << "SMOOTHED, THEN WITHIN A TOLERANCE (--smooth " << *args.smooth << ", tolerance "
+        << r.fraction(r.tolerance) << " x diagonal): " << r.num_blocks << " blocks decompose " << args.outdir << "/"
+        << kSmoothedInputFile << " (vertices moved at most " << r.fraction(r.decomposed_deviation)
+        << " x diagonal, mean " << r.fraction(r.smoothed_mean_deviation) << ") within the tolerance, not "
+        << args.mesh << ": the deviations add up, the blocks lie within " << r.max_deviation << " ("
+        << r.fraction(r.max_deviation) << " x diagonal) of the input; no block is thinner than "
+        << r.fraction(r.sliver_floor) << " x diagonal where the model is thicker (" << result.num_slivers
+        << " left); subfab validate checks the blocks against " << kSmoothedInputFile << " within the tolerance";
+    progress.warn(msg.str());
+  } else if (smoothed && !args.common.quiet) {
     const SmoothedDecomposeReport& r = smoothed->report;
     std::ostringstream msg;
     msg << "SMOOTHED AND RESTORED (--smooth " << *args.smooth << "): the smoothed model (Hausdorff "
@@ -356,7 +401,7 @@ void add_decompose_options(CLI::App& sub, DecomposeArgs& args) {
                  "thin-feature repair there). Not given: exact blocks, except where the thin-feature repair gives "
                  "up: then 5e-4 (said and recorded); --tolerance 0 refuses instead (exit 3)")
       ->check(CLI::NonNegativeNumber)
-      ->each([&args](const std::string&) { args.tolerance_given = true; });
+      ->each([&args](const std::string&) { args.tolerance_given = args.tolerance_fraction_given = true; });
   sub.add_option("--tolerance-abs", args.tolerance_abs,
                  "Deviation allowed in model units (with --tolerance the smaller wins)")
       ->check(CLI::NonNegativeNumber)
@@ -379,8 +424,10 @@ void add_decompose_options(CLI::App& sub, DecomposeArgs& args) {
                  "--smooth=F or put it after MESH), decompose the smoothed model, put the details back within its "
                  "blocks' regions and milling directions, and carve the blocks again. The blocks then decompose "
                  "OUTDIR/input_restored.obj (written, with OUTDIR/input_smoothed.obj), which subfab validate checks "
-                 "them against; the deviation from the input is measured and reported. Not with --tolerance or "
-                 "--max-overhang")
+                 "them against; the deviation from the input is measured and reported. With --tolerance T: the "
+                 "smoothed model is decomposed within T instead (no restoration; the blocks decompose "
+                 "OUTDIR/input_smoothed.obj within T, and lie within F + T of the input, the bound reported). "
+                 "Not with --max-overhang")
       ->expected(0, 1)
       ->default_str("0.005")
       ->check(CLI::NonNegativeNumber);

@@ -32,6 +32,7 @@ struct ValidateArgs {
   std::string outdir;
   std::optional<double> max_overhang;  // --max-overhang: overrides the recorded allowance
   std::optional<double> tolerance;     // --tolerance: overrides the recorded tolerance (fraction of the diagonal)
+  bool against_input = false;          // --against-input: checks 4, 5, 10 against MESH, not what was decomposed
   CommonOptions common;
 };
 
@@ -46,7 +47,13 @@ struct RecordedRepair {
   std::string mesh;  // OUTDIR-relative path of the repaired input
   double max_deviation = 0, max_deviation_fraction = 0, mean_deviation = 0;
   std::string what;  // what it changed, for the note
+  double sliver_floor = 0;  // --smooth with --tolerance: check 9's floor as decompose used it (model units)
+  bool smoothed_only = false;  // --smooth with --tolerance: the smoothed model, details not restored
+  double error = 0;  // error bound of max_deviation (model units; 0 when not recorded or a bound)
 };
+
+//! The recorded error bound of a measured deviation ("hausdorff_error"; 0 when none).
+double recorded_error(const Json& r) { return r.contains("hausdorff_error") ? r["hausdorff_error"].get<double>() : 0.0; }
 
 struct RecordedRepairs {
   std::optional<RecordedRepair> features;  // thin-feature repair (of the mesh below, when there is one)
@@ -87,6 +94,7 @@ std::vector<ValidationBlock> read_decomposition(const fs::path& outdir, Validati
                     std::to_string(r["precision_snap"].at("num_vertices_moved").get<std::size_t>()) +
                     " vertices moved)"
               : std::to_string(r.at("num_features").get<int>()) + " infeasible features smoothed"};
+      repairs.features->error = recorded_error(r);
     }
     if (input_json.contains("mesh_repair") && !input_json["mesh_repair"].is_null()) {
       const Json& r = input_json["mesh_repair"];
@@ -94,14 +102,18 @@ std::vector<ValidationBlock> read_decomposition(const fs::path& outdir, Validati
                                     r.at("max_deviation_fraction").get<double>(),
                                     r.at("mean_deviation").get<double>(),
                                     "repaired with --repair: " + r.at("applied_steps").get<std::string>()};
+      repairs.mesh->error = recorded_error(r);
     }
     if (input_json.contains("smoothing") && !input_json["smoothing"].is_null()) {
       const Json& r = input_json["smoothing"];
-      repairs.restored = RecordedRepair{r.at("mesh").get<std::string>(), r.at("max_deviation").get<double>(),
-                                        r.at("max_deviation_fraction").get<double>(),
-                                        r.at("mean_deviation").get<double>(),
-                                        "smoothed (cap " + std::to_string(r.at("cap_fraction").get<double>()) +
-                                            " x diagonal) and details restored with --smooth"};
+      const bool restored = !r.contains("restored") || r["restored"].get<bool>();
+      repairs.restored = RecordedRepair{
+          r.at("mesh").get<std::string>(), r.at("max_deviation").get<double>(),
+          r.at("max_deviation_fraction").get<double>(), r.at("mean_deviation").get<double>(),
+          "smoothed (cap " + std::to_string(r.at("cap_fraction").get<double>()) + " x diagonal)" +
+              (restored ? " and details restored with --smooth" : " with --smooth, then decomposed within --tolerance"),
+          r.contains("sliver_floor") ? r["sliver_floor"].get<double>() : 0.0, !restored};
+      if (restored) repairs.restored->error = recorded_error(r);  // else max_deviation is a bound
     }
     const Json& p = doc.at("parameters");
     if (p.contains("max_height") && !p["max_height"].is_null()) limits.max_height = p["max_height"].get<double>();
@@ -294,8 +306,19 @@ int run_validate(const ValidateArgs& args) {
       read_decomposition(args.outdir, options.limits, repairs, recorded_overhang, recorded_tolerance, frame);
   options.frame_rotation = frame.rotation;
   options.frame_snap_tolerance = frame.snap_tolerance;
-  const RecordedRepair* repair = repairs.decomposed();
-  const double tolerance_fraction = args.tolerance ? *args.tolerance : recorded_tolerance;
+  const RecordedRepair* repair = args.against_input ? nullptr : repairs.decomposed();
+  // Fractions are of the INPUT's diagonal, as decompose records them (a
+  // repaired or smoothed model's is a little different).
+  const double diagonal = bounding_box(input).diagonal();
+  // --against-input: what the blocks decompose lies within its recorded
+  // deviations of MESH (they add up), the blocks within the tolerance of it
+  double recorded_deviation = 0.0;
+  for (const auto* r : {repairs.mesh ? &*repairs.mesh : nullptr, repairs.features ? &*repairs.features : nullptr,
+                        repairs.restored ? &*repairs.restored : nullptr})
+    if (r) recorded_deviation += r->max_deviation + r->error;
+  const double tolerance_fraction =
+      args.tolerance ? *args.tolerance
+                     : recorded_tolerance + (args.against_input ? recorded_deviation / std::max(diagonal, 1e-300) : 0.0);
   const double overhang = args.max_overhang ? *args.max_overhang : recorded_overhang;
   try {
     options.normal_tolerance = height_field_normal_tolerance(overhang);
@@ -320,7 +343,9 @@ int run_validate(const ValidateArgs& args) {
     const Mesh original = std::move(input);
     input = read_mesh(fs::path(args.outdir) / repair->mesh);
     std::ostringstream note;
-    note << "NOTE: the decomposition is of the " << (repairs.restored ? "RESTORED (smoothed, details put back)" : "REPAIRED")
+    note << "NOTE: the decomposition is of the " << (!repairs.restored                    ? "REPAIRED"
+             : repairs.restored->smoothed_only ? "SMOOTHED"
+                                                  : "RESTORED (smoothed, details put back)")
          << " input " << (fs::path(args.outdir) / repair->mesh).string()
          << " (";
     double recorded = 0;  // the deviations add up (triangle inequality)
@@ -343,13 +368,20 @@ int run_validate(const ValidateArgs& args) {
     repair_note = note.str();
     if (!args.common.quiet) progress.warn(repair_note);
   }
-  const double diagonal = bounding_box(input).diagonal();
   options.tolerance = tolerance_fraction * diagonal;
+  // --smooth with --tolerance: no block thinner than the smoothing's and
+  // the tolerance's deviations together, as decompose made them
+  if (repair && repair->sliver_floor > 0)
+    options.sliver_thickness = repair->sliver_floor / std::max(bounding_box(input).diagonal(), 1e-300);
   std::string tolerance_note;
   if (tolerance_fraction > 0) {
     std::ostringstream note;
     note << "NOTE: decomposition within a tolerance of " << tolerance_fraction << " x diagonal = "
-         << options.tolerance << " (" << (args.tolerance ? "--tolerance" : "as recorded")
+         << options.tolerance << " ("
+         << (args.tolerance         ? "--tolerance"
+             : args.against_input ? "--against-input: the recorded tolerance plus the recorded deviations of what "
+                                    "the blocks decompose from " + args.mesh
+                                  : "as recorded")
          << "): blocks may stick out of the input (check 4), samples within it count as covered (check 5), "
             "and check 10 measures the deviation of the model made";
     tolerance_note = note.str();
@@ -365,6 +397,7 @@ int run_validate(const ValidateArgs& args) {
     j["passed"] = report.passed();
     j["max_overhang_deg"] = overhang;
     j["tolerance_fraction"] = tolerance_fraction;
+    j["against_input"] = args.against_input;
     if (options.tolerance > 0)
       j["deviation"] = {{"num_sticking_out", report.num_filled},
                         {"to_input", report.deviation_to_input},
@@ -424,6 +457,11 @@ void add_validate_options(CLI::App& sub, ValidateArgs& args) {
                  "Deviation allowed, fraction of the bounding-box diagonal (default: the one decompose recorded "
                  "in decomposition.json, 0 when none = every block inside the input)")
       ->check(CLI::NonNegativeNumber);
+  sub.add_flag("--against-input", args.against_input,
+               "Check the blocks against MESH itself even where decompose repaired, smoothed or restored it "
+               "(default: against what the blocks decompose, OUTDIR/input_*.obj): checks 4, 5 and 10 then allow "
+               "the recorded tolerance plus the recorded deviations of that model from MESH (they add up), unless "
+               "--tolerance is given; check 9's threshold follows that tolerance");
 }
 
 const RegisterCommand kRegisterValidate(make_command<ValidateArgs>(

@@ -30,9 +30,6 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 void check_options(const SmoothedDecomposeOptions& o) {
-  if (o.decompose.tolerance_fraction != 0 || o.decompose.tolerance_abs < std::numeric_limits<double>::infinity())
-    throw InvalidArgumentError("--smooth decomposes the smoothed model exactly and restores its details: it cannot "
-                               "be combined with --tolerance or --tolerance-abs");
   if (o.decompose.max_overhang_deg != 0)
     throw InvalidArgumentError("--smooth makes exact height-field blocks: it cannot be combined with --max-overhang");
   if (o.max_carve_rounds < 1) throw InvalidArgumentError("decompose_smoothed: max_carve_rounds must be >= 1");
@@ -141,6 +138,70 @@ std::vector<int> vertices_to_hold(const Mesh& restored, const Mesh& smoothed, co
   return out;
 }
 
+//! Area-weighted mean distance of `modified`'s surface to `input`'s over the
+//! whole surface (its faces not in `input` measured, the rest at 0), and
+//! into `hausdorff` the symmetric Hausdorff distance of those faces, within
+//! `error` (model units).
+double whole_surface_mean(const Mesh& input, const Mesh& modified, double error, double* hausdorff) {
+  const std::vector<int> changed = detail::faces_not_in(modified, input);
+  if (changed.empty()) return 0.0;
+  const detail::SurfaceDeviation d = detail::surface_deviation(input, input, modified, changed, error);
+  if (hausdorff) *hausdorff = d.hausdorff;
+  double changed_area = 0;
+  for (int f : changed) changed_area += face_area(modified, static_cast<std::size_t>(f));
+  const double area = surface_area(modified);
+  return area > 0 ? d.mean * changed_area / area : 0.0;
+}
+
+//! `--smooth` with `--tolerance`: the smoothed model decomposed within the
+//! tolerance (the allowances of decompose(), issue 17); no restoration (the
+//! blocks' milled shapes are measured against the smoothed model). The
+//! deviations add up (triangle inequality of the Hausdorff distance): the
+//! blocks lie within the smoothing's largest vertex move plus the measured
+//! deviation bound of the input. No block is thinner than that sum (or a
+//! quarter of the height limit) where the model is thicker.
+SmoothedDecomposeResult decompose_smoothed_within(const Mesh& input, SmoothResult smoothed, DecomposeOptions d,
+                                                  double tolerance, SmoothedDecomposeResult out) {
+  SmoothedDecomposeReport& report = out.report;
+  Progress* progress = d.progress;
+  // each smoothed point lies within its vertices' largest move of the same
+  // barycentric point of the input face: a bound of the Hausdorff distance
+  const double smoothing = report.smooth.max_displacement;
+  d.tolerance_fraction = 1.0;  // the tolerance in model units (of the input's diagonal)
+  d.tolerance_abs = tolerance;
+  d.fallback_tolerance_fraction = 0.0;
+  const double smoothed_diagonal = bounding_box(smoothed.mesh).diagonal();
+  report.sliver_floor = std::max(d.sliver_thickness * report.bbox_diagonal,
+                                 std::min(smoothing + tolerance, d.max_height_abs / 4));
+  d.sliver_thickness = report.sliver_floor / std::max(smoothed_diagonal, 1e-300);
+  DecomposeResult result = decompose(smoothed.mesh, d);
+  report.within_tolerance = true;
+  report.tolerance = tolerance;
+  report.num_blocks_smoothed = report.num_blocks = result.blocks.size();
+  // what the blocks decompose: the smoothed model (snapped within its file's
+  // rounding when decompose() had to)
+  report.decomposed_deviation = smoothing + (result.repaired_input ? result.repair.max_deviation : 0.0);
+  if (!result.repaired_input) result.repaired_input = smoothed.mesh;
+  report.max_deviation = report.decomposed_deviation + result.deviation_bound;
+  report.deviation_error = 0.0;  // a bound, not a measure
+  report.smoothed_mean_deviation =
+      whole_surface_mean(input, smoothed.mesh, std::max(report.smooth.hausdorff_error, 1e-300), nullptr);
+  report.mean_deviation = report.smoothed_mean_deviation;
+  result.timings.total += report.smooth.seconds;
+  if (progress) {
+    std::ostringstream msg;
+    msg << "smoothed (vertices moved at most " << report.fraction(smoothing)
+        << " x diagonal) and decomposed within " << report.fraction(tolerance) << " x diagonal: "
+        << report.num_blocks << " blocks; deviation of the blocks from the input at most "
+        << report.fraction(report.max_deviation) << " x diagonal (smoothing " << report.fraction(smoothing)
+        << " + tolerance's measured bound " << report.fraction(result.deviation_bound) << ")";
+    progress->info(msg.str());
+  }
+  out.decomposition = std::move(result);
+  out.smoothed = std::move(smoothed.mesh);
+  return out;
+}
+
 }  // namespace
 
 SmoothedDecomposeResult decompose_smoothed(const Mesh& input_mesh, const SmoothedDecomposeOptions& options) {
@@ -158,8 +219,17 @@ SmoothedDecomposeResult decompose_smoothed(const Mesh& input_mesh, const Smoothe
   Mesh input = input_mesh;
   require_closed_solid(input);  // the same (possibly flipped) solid the smoothing worked on
 
+  // The limits in model units of the INPUT's diagonal (the smoothed model's
+  // is a little shorter).
+  const double input_diagonal = report.bbox_diagonal;
+  DecomposeOptions d = options.decompose;
+  d.max_height_abs = std::min(d.max_height_abs, d.max_height_fraction * input_diagonal);
+  d.max_height_fraction = std::numeric_limits<double>::infinity();
+  const double tolerance = std::min(d.tolerance_fraction * input_diagonal, d.tolerance_abs);
+  if (tolerance > 0) return decompose_smoothed_within(input, std::move(smoothed), d, tolerance, std::move(out));
+
   // 2. decompose the smoothed model
-  DecomposeResult result = decompose(smoothed.mesh, options.decompose);
+  DecomposeResult result = decompose(smoothed.mesh, d);
   if (result.repaired_input)
     throw AlgorithmError("the smoothed model (cap " + std::to_string(options.smooth.max_deviation) +
                          " x diagonal) still has " + std::to_string(result.repair.num_features) +
@@ -290,19 +360,9 @@ SmoothedDecomposeResult decompose_smoothed(const Mesh& input_mesh, const Smoothe
 
   // 6. deviation of the blocks' union (the restored solid) from the input
   report.deviation_error = options.hausdorff_error * report.bbox_diagonal;
-  const auto whole_surface_mean = [&](const Mesh& modified, double* hausdorff) {
-    const std::vector<int> changed = detail::faces_not_in(modified, input);
-    if (changed.empty()) return 0.0;
-    const detail::SurfaceDeviation d =
-        detail::surface_deviation(input, input, modified, changed, std::max(report.deviation_error, 1e-300));
-    if (hausdorff) *hausdorff = d.hausdorff;
-    double changed_area = 0;
-    for (int f : changed) changed_area += face_area(modified, static_cast<std::size_t>(f));
-    const double area = surface_area(modified);
-    return area > 0 ? d.mean * changed_area / area : 0.0;
-  };
-  report.mean_deviation = whole_surface_mean(restored_input, &report.max_deviation);
-  report.smoothed_mean_deviation = whole_surface_mean(smoothed.mesh, nullptr);
+  const double error = std::max(report.deviation_error, 1e-300);
+  report.mean_deviation = whole_surface_mean(input, restored_input, error, &report.max_deviation);
+  report.smoothed_mean_deviation = whole_surface_mean(input, smoothed.mesh, error, nullptr);
 
   result.blocks = std::move(blocks);
   result.ordered_boxes = room;

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "support/block_test_shapes.h"
+#include "support/groove_shapes.h"
 #include "support/smooth_test_shapes.h"
 #include "subfab/mesh/write_mesh.h"
 #include "support/test_support.h"
@@ -227,6 +228,70 @@ TEST(DecomposeCli, SmoothPassesAndFactorsSetTheSmoothingStrength) {
                               " --smooth --smooth-lambda 1.5 --quiet --no-view");
   EXPECT_EQ(bad.exit_code, 1) << bad.output;
   EXPECT_NE(bad.output.find("lambda must be in (0, 1)"), std::string::npos) << bad.output;
+}
+
+// Regression: `--tolerance-abs D` alone was bounded by the unset --tolerance
+// (0, the smaller wins) and gave exact blocks.
+TEST(DecomposeCli, ToleranceAbsAloneIsTheTolerance) {
+  const fs::path dir = test::temp_dir();
+  const fs::path mesh = dir / "grooved.obj";
+  write_mesh(test::voxel_mesh(test::grooved_box_cells()), mesh);  // groove 1 deep round a 10-cube
+  const auto blocks_within = [&](const std::string& option, const std::string& name) {
+    const fs::path out = dir / name;
+    const auto r = run_subfab("decompose " + quoted(mesh) + " -o " + quoted(out) + " --no-orient " + option +
+                              " --quiet --no-view --threads 1");
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    const auto doc = nlohmann::json::parse(slurp(out / "decomposition.json"));
+    return std::pair{doc.at("blocks").size(), doc.at("parameters").at("tolerance").get<double>()};
+  };
+  const auto [exact_blocks, zero] = blocks_within("--tolerance 0", "exact");
+  EXPECT_EQ(zero, 0.0);
+  const auto [abs_blocks, abs] = blocks_within("--tolerance-abs 2.5", "abs");
+  EXPECT_EQ(abs, 2.5);
+  EXPECT_LT(abs_blocks, exact_blocks);  // the groove (1 deep) filled within 2.5
+  const auto [both_blocks, both] = blocks_within("--tolerance-abs 2.5 --tolerance 0.01", "both");
+  EXPECT_NEAR(both, 0.01 * std::sqrt(300.0), 1e-12);  // the smaller wins
+  EXPECT_EQ(both_blocks, exact_blocks);               // 0.17 < the groove's depth
+}
+
+// --smooth with --tolerance: the smoothed model decomposed within the
+// tolerance, recorded as such; validate checks the blocks against it.
+TEST(DecomposeCli, SmoothWithAToleranceDecomposesTheSmoothedModelWithinIt) {
+  const fs::path dir = test::temp_dir();
+  const fs::path mesh = dir / "leaning.obj";
+  write_mesh(test::bumped_cube(12, 0.25, 0.2), mesh);
+  const fs::path out = dir / "out";
+  const auto r = run_subfab("decompose " + quoted(mesh) + " -o " + quoted(out) +
+                            " --no-orient --smooth=0.01 --smooth-passes 20 --tolerance 0.05 --no-view --threads 1");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("SMOOTHED, THEN WITHIN A TOLERANCE"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(out / "input_smoothed.obj"));
+  EXPECT_FALSE(fs::exists(out / "input_restored.obj"));
+  const auto doc = nlohmann::json::parse(slurp(out / "decomposition.json"));
+  const auto& s = doc.at("input").at("smoothing");
+  EXPECT_FALSE(s.at("restored").get<bool>());
+  EXPECT_EQ(doc.at("input").at("decomposed_mesh").get<std::string>(), "input_smoothed.obj");
+  EXPECT_NEAR(doc.at("parameters").at("tolerance_fraction").get<double>(), 0.05, 1e-12);
+  EXPECT_LE(s.at("max_deviation_fraction").get<double>(), 0.01 * (1 + 1e-12));
+  const double total = s.at("total_deviation_bound_fraction").get<double>();
+  EXPECT_GT(total, s.at("max_deviation_fraction").get<double>());
+  EXPECT_LE(total, 0.06 * (1 + 1e-12));
+  const auto v = run_subfab("validate " + quoted(mesh) + " " + quoted(out));
+  EXPECT_EQ(v.exit_code, 0) << v.output;
+  EXPECT_NE(v.output.find("SMOOTHED"), std::string::npos) << v.output;
+  EXPECT_NE(v.output.find("then decomposed within --tolerance"), std::string::npos) << v.output;
+  // against the input itself: within the smoothing's bound plus the tolerance (the deviations add up)
+  const auto a = run_subfab("validate " + quoted(mesh) + " " + quoted(out) + " --against-input --json --quiet");
+  EXPECT_EQ(a.exit_code, 0) << a.output;
+  const auto aj = nlohmann::json::parse(a.output.substr(a.output.find('{')));
+  EXPECT_TRUE(aj.at("against_input").get<bool>());
+  EXPECT_NEAR(aj.at("tolerance_fraction").get<double>(), 0.05 + s.at("max_deviation_fraction").get<double>(), 1e-9);
+  EXPECT_GT(aj.at("deviation").at("max_fraction").get<double>(), 0.0);
+  // an overhang allowance does not combine with it
+  const auto m = run_subfab("decompose " + quoted(mesh) + " -o " + quoted(dir / "m") +
+                            " --smooth --tolerance 0.05 --max-overhang 5 --quiet --no-view");
+  EXPECT_EQ(m.exit_code, 1) << m.output;
+  EXPECT_NE(m.output.find("--max-overhang"), std::string::npos) << m.output;
 }
 
 }  // namespace

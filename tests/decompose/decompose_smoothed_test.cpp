@@ -80,13 +80,48 @@ TEST(DecomposeSmoothed, SameBlocksOnOneThread) {
     EXPECT_EQ(one.decomposition.blocks[i].mesh.vertices, many.decomposition.blocks[i].mesh.vertices);
 }
 
-TEST(DecomposeSmoothed, RejectsATolerance) {
+TEST(DecomposeSmoothed, RejectsAnOverhangAllowance) {
   SmoothedDecomposeOptions o = options_for_test(0.01, 10);
-  o.decompose.tolerance_fraction = 1e-3;
-  EXPECT_THROW(decompose_smoothed(bumped_cube(4, 0.1), o), InvalidArgumentError);
-  o = options_for_test(0.01, 10);
   o.decompose.max_overhang_deg = 10;
   EXPECT_THROW(decompose_smoothed(bumped_cube(4, 0.1), o), InvalidArgumentError);
+}
+
+// --smooth with --tolerance: the smoothed model decomposed within the
+// tolerance, nothing restored; the blocks lie within the smoothing's largest
+// move plus the tolerance's measured bound of the ORIGINAL input (checked
+// here by validate's check 10 against the original at that bound), and no
+// block is thinner than that sum where the model is thicker.
+TEST(DecomposeSmoothed, WithinAToleranceTheDeviationsAddUp) {
+  const Mesh input = bumped_cube(12, 0.25, 0.2);
+  SmoothedDecomposeOptions o = options_for_test(0.01, 20);
+  o.decompose.tolerance_fraction = 0.05;
+  const SmoothedDecomposeResult within = decompose_smoothed(input, o);
+  const SmoothedDecomposeReport& rep = within.report;
+  EXPECT_TRUE(rep.within_tolerance);
+  // the same smoothed model decomposed exactly (its undercut repaired)
+  const DecomposeResult exact = decompose(within.smoothed, options_for_test(0.01, 20).decompose);
+  // measured: 40 exact blocks, 1 within the tolerance, bound 0.029 x diagonal (smoothing 0.01)
+  EXPECT_LT(rep.num_blocks, exact.blocks.size());  // the undercut is filled within the tolerance
+  EXPECT_DOUBLE_EQ(rep.tolerance, 0.05 * rep.bbox_diagonal);  // of the input's diagonal
+  EXPECT_LE(rep.decomposed_deviation, 0.01 * rep.bbox_diagonal * (1 + 1e-12));
+  EXPECT_GE(rep.decomposed_deviation, rep.smooth.hausdorff - rep.smooth.hausdorff_error);
+  EXPECT_GT(rep.max_deviation, rep.decomposed_deviation);  // the fill deviates too
+  EXPECT_LE(rep.max_deviation, rep.decomposed_deviation + rep.tolerance);
+  EXPECT_DOUBLE_EQ(rep.sliver_floor, rep.decomposed_deviation + rep.tolerance);
+  const DecomposeResult& d = within.decomposition;
+  ASSERT_TRUE(d.repaired_input.has_value());
+  EXPECT_EQ(d.repaired_input->vertices, within.smoothed.vertices);  // the blocks decompose the smoothed model
+  for (const Block& b : d.blocks) EXPECT_TRUE(is_height_field(b.mesh, axis_direction(b.axis)));
+  // against the smoothed model within T, and against the input within the bound
+  const std::vector<ValidationBlock> blocks = test::to_validation(make_exported_blocks(within.smoothed, d));
+  for (const auto& [model, tolerance] : {std::pair{&within.smoothed, rep.tolerance}, std::pair{&input, rep.max_deviation}}) {
+    ValidationOptions vo;
+    vo.tolerance = tolerance;
+    vo.sliver_thickness = rep.sliver_floor / bounding_box(*model).diagonal();
+    const ValidationReport report = validate_decomposition(*model, blocks, vo);
+    for (const CheckReport& c : report.checks)
+      EXPECT_TRUE(c.passed) << c.name << ": " << (c.failures.empty() ? c.summary : c.failures[0]);
+  }
 }
 
 }  // namespace

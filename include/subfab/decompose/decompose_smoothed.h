@@ -26,6 +26,18 @@
 //!      from the ORIGINAL input: symmetric Hausdorff distance (CGAL, bounded
 //!      error) and area-weighted mean distance over the whole surface.
 //!
+//! With a tolerance T (DecomposeOptions::tolerance_fraction / tolerance_abs,
+//! of the INPUT's diagonal; `decompose --smooth=F --tolerance T`), steps 3-6
+//! are replaced: the smoothed model is decomposed within T (the allowances of
+//! decompose(), issue 17: exact height-field blocks, undercuts within T
+//! filled), and nothing is restored. The deviations add up (triangle
+//! inequality): the blocks' union lies within the smoothing's largest vertex
+//! move (<= F, a bound of its Hausdorff distance) plus decompose()'s measured
+//! deviation bound (<= T) of the input, reported as max_deviation (a bound).
+//! No block is thinner than that sum (or a quarter of the height limit) where
+//! the model is thicker (sliver_floor). The blocks decompose the smoothed
+//! model (written as OUTDIR/input_smoothed.obj) within T.
+//!
 //! The blocks decompose the RESTORED solid (result.decomposition.repaired_input,
 //! input coordinates): `subfab validate` checks them against it (written as
 //! OUTDIR/input_restored.obj).
@@ -42,7 +54,9 @@ namespace subfab {
 //! Options of decompose_smoothed().
 struct SmoothedDecomposeOptions {
   DecomposeOptions decompose;       // the decomposition of the smoothed model (its progress is used throughout);
-                                    // tolerance_fraction must be 0 and max_overhang_deg 0 (exact blocks)
+                                    // max_overhang_deg must be 0; a tolerance (of the input's diagonal) gives
+                                    // the path without restoration (file comment); the height limit is of the
+                                    // input's diagonal too
   SmoothOptions smooth;             // the smoothing (max_deviation: the cap, `--smooth F`)
   RestoreDetailsOptions restore;    // the restoration (its `held` is set here)
   int max_carve_rounds = 4;         // restorations, each carved and checked (>= 1); the last holds every
@@ -63,10 +77,18 @@ struct SmoothedDecomposeReport {
   std::size_t num_held = 0;             // vertices held at their smoothed positions after failed carves
   double bbox_diagonal = 0;         // of the input, model units
   double max_deviation = 0;         // symmetric Hausdorff distance, blocks' union <-> input surfaces, model units
+                                    // (within a tolerance: its bound, decomposed_deviation + the measured bound)
   double mean_deviation = 0;        // area-weighted mean distance of the blocks' union's surface to the input,
-                                    // over the whole surface, model units
+                                    // over the whole surface, model units (within a tolerance: the smoothed
+                                    // model's; the material filled under undercuts is not in it)
   double deviation_error = 0;       // absolute error bound of max_deviation, model units
   double smoothed_mean_deviation = 0;  // the same mean for the smoothed model (before restoration)
+  bool within_tolerance = false;    // decomposed within `tolerance` and not restored (the file comment)
+  double tolerance = 0;             // within a tolerance: T, model units
+  double decomposed_deviation = 0;  // within a tolerance: bound of the decomposed (smoothed) model's Hausdorff
+                                    // distance from the input (the smoothing's largest vertex move), model units
+  double sliver_floor = 0;          // within a tolerance: blocks thinner than max(this, min(T, H / 4)) where the
+                                    // model is thicker are slivers, model units
   double restore_seconds = 0;       // steps 3-6
   double fraction(double x) const { return bbox_diagonal > 0 ? x / bbox_diagonal : 0; }
 };
