@@ -97,7 +97,6 @@ nlohmann::ordered_json smoothing_record(const SmoothedDecomposeReport& r, const 
             // the blocks from the input: smoothing + the tolerance's measured bound (triangle inequality)
             {"total_deviation_bound", r.max_deviation},
             {"total_deviation_bound_fraction", r.fraction(r.max_deviation)},
-            {"sliver_floor", r.sliver_floor},
             {"smooth_seconds", r.smooth.seconds}};
   return {{"mesh", kRestoredInputFile},
           {"restored", true},
@@ -213,9 +212,7 @@ int run_decompose(const DecomposeArgs& args) {
         << kSmoothedInputFile << " (vertices moved at most " << r.fraction(r.decomposed_deviation)
         << " x diagonal, mean " << r.fraction(r.smoothed_mean_deviation) << ") within the tolerance, not "
         << args.mesh << ": the deviations add up, the blocks lie within " << r.max_deviation << " ("
-        << r.fraction(r.max_deviation) << " x diagonal) of the input; no block is thinner than "
-        << r.fraction(r.sliver_floor) << " x diagonal where the model is thicker (" << result.num_slivers
-        << " left); subfab validate checks the blocks against " << kSmoothedInputFile << " within the tolerance";
+        << r.fraction(r.max_deviation) << " x diagonal) of the input; subfab validate checks the blocks against " << kSmoothedInputFile << " within the tolerance";
     progress.warn(msg.str());
   } else if (smoothed && !args.common.quiet) {
     const SmoothedDecomposeReport& r = smoothed->report;

@@ -47,7 +47,6 @@ struct RecordedRepair {
   std::string mesh;  // OUTDIR-relative path of the repaired input
   double max_deviation = 0, max_deviation_fraction = 0, mean_deviation = 0;
   std::string what;  // what it changed, for the note
-  double sliver_floor = 0;  // --smooth with --tolerance: check 9's floor as decompose used it (model units)
   bool smoothed_only = false;  // --smooth with --tolerance: the smoothed model, details not restored
   double error = 0;  // error bound of max_deviation (model units; 0 when not recorded or a bound)
 };
@@ -112,7 +111,7 @@ std::vector<ValidationBlock> read_decomposition(const fs::path& outdir, Validati
           r.at("max_deviation_fraction").get<double>(), r.at("mean_deviation").get<double>(),
           "smoothed (cap " + std::to_string(r.at("cap_fraction").get<double>()) + " x diagonal)" +
               (restored ? " and details restored with --smooth" : " with --smooth, then decomposed within --tolerance"),
-          r.contains("sliver_floor") ? r["sliver_floor"].get<double>() : 0.0, !restored};
+          !restored};
       if (restored) repairs.restored->error = recorded_error(r);  // else max_deviation is a bound
     }
     const Json& p = doc.at("parameters");
@@ -369,10 +368,6 @@ int run_validate(const ValidateArgs& args) {
     if (!args.common.quiet) progress.warn(repair_note);
   }
   options.tolerance = tolerance_fraction * diagonal;
-  // --smooth with --tolerance: no block thinner than the smoothing's and
-  // the tolerance's deviations together, as decompose made them
-  if (repair && repair->sliver_floor > 0)
-    options.sliver_thickness = repair->sliver_floor / std::max(bounding_box(input).diagonal(), 1e-300);
   std::string tolerance_note;
   if (tolerance_fraction > 0) {
     std::ostringstream note;

@@ -158,8 +158,8 @@ double whole_surface_mean(const Mesh& input, const Mesh& modified, double error,
 //! blocks' milled shapes are measured against the smoothed model). The
 //! deviations add up (triangle inequality of the Hausdorff distance): the
 //! blocks lie within the smoothing's largest vertex move plus the measured
-//! deviation bound of the input. No block is thinner than that sum (or a
-//! quarter of the height limit) where the model is thicker.
+//! deviation bound of the input. Slivers are judged at T, as decompose()
+//! judges them within T (the smoothing makes no pieces).
 SmoothedDecomposeResult decompose_smoothed_within(const Mesh& input, SmoothResult smoothed, DecomposeOptions d,
                                                   double tolerance, SmoothedDecomposeResult out) {
   SmoothedDecomposeReport& report = out.report;
@@ -170,10 +170,6 @@ SmoothedDecomposeResult decompose_smoothed_within(const Mesh& input, SmoothResul
   d.tolerance_fraction = 1.0;  // the tolerance in model units (of the input's diagonal)
   d.tolerance_abs = tolerance;
   d.fallback_tolerance_fraction = 0.0;
-  const double smoothed_diagonal = bounding_box(smoothed.mesh).diagonal();
-  report.sliver_floor = std::max(d.sliver_thickness * report.bbox_diagonal,
-                                 std::min(smoothing + tolerance, d.max_height_abs / 4));
-  d.sliver_thickness = report.sliver_floor / std::max(smoothed_diagonal, 1e-300);
   DecomposeResult result = decompose(smoothed.mesh, d);
   report.within_tolerance = true;
   report.tolerance = tolerance;

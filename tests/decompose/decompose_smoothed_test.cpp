@@ -89,8 +89,8 @@ TEST(DecomposeSmoothed, RejectsAnOverhangAllowance) {
 // --smooth with --tolerance: the smoothed model decomposed within the
 // tolerance, nothing restored; the blocks lie within the smoothing's largest
 // move plus the tolerance's measured bound of the ORIGINAL input (checked
-// here by validate's check 10 against the original at that bound), and no
-// block is thinner than that sum where the model is thicker.
+// here by validate's check 10 against the original at that bound, every
+// other check passing there too).
 TEST(DecomposeSmoothed, WithinAToleranceTheDeviationsAddUp) {
   const Mesh input = bumped_cube(12, 0.25, 0.2);
   SmoothedDecomposeOptions o = options_for_test(0.01, 20);
@@ -107,7 +107,6 @@ TEST(DecomposeSmoothed, WithinAToleranceTheDeviationsAddUp) {
   EXPECT_GE(rep.decomposed_deviation, rep.smooth.hausdorff - rep.smooth.hausdorff_error);
   EXPECT_GT(rep.max_deviation, rep.decomposed_deviation);  // the fill deviates too
   EXPECT_LE(rep.max_deviation, rep.decomposed_deviation + rep.tolerance);
-  EXPECT_DOUBLE_EQ(rep.sliver_floor, rep.decomposed_deviation + rep.tolerance);
   const DecomposeResult& d = within.decomposition;
   ASSERT_TRUE(d.repaired_input.has_value());
   EXPECT_EQ(d.repaired_input->vertices, within.smoothed.vertices);  // the blocks decompose the smoothed model
@@ -117,7 +116,6 @@ TEST(DecomposeSmoothed, WithinAToleranceTheDeviationsAddUp) {
   for (const auto& [model, tolerance] : {std::pair{&within.smoothed, rep.tolerance}, std::pair{&input, rep.max_deviation}}) {
     ValidationOptions vo;
     vo.tolerance = tolerance;
-    vo.sliver_thickness = rep.sliver_floor / bounding_box(*model).diagonal();
     const ValidationReport report = validate_decomposition(*model, blocks, vo);
     for (const CheckReport& c : report.checks)
       EXPECT_TRUE(c.passed) << c.name << ": " << (c.failures.empty() ? c.summary : c.failures[0]);

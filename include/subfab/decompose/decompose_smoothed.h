@@ -34,9 +34,8 @@
 //! inequality): the blocks' union lies within the smoothing's largest vertex
 //! move (<= F, a bound of its Hausdorff distance) plus decompose()'s measured
 //! deviation bound (<= T) of the input, reported as max_deviation (a bound).
-//! No block is thinner than that sum (or a quarter of the height limit) where
-//! the model is thicker (sliver_floor). The blocks decompose the smoothed
-//! model (written as OUTDIR/input_smoothed.obj) within T.
+//! Slivers are judged at T, as within T alone. The blocks decompose the
+//! smoothed model (written as OUTDIR/input_smoothed.obj) within T.
 //!
 //! The blocks decompose the RESTORED solid (result.decomposition.repaired_input,
 //! input coordinates): `subfab validate` checks them against it (written as
@@ -87,8 +86,6 @@ struct SmoothedDecomposeReport {
   double tolerance = 0;             // within a tolerance: T, model units
   double decomposed_deviation = 0;  // within a tolerance: bound of the decomposed (smoothed) model's Hausdorff
                                     // distance from the input (the smoothing's largest vertex move), model units
-  double sliver_floor = 0;          // within a tolerance: blocks thinner than max(this, min(T, H / 4)) where the
-                                    // model is thicker are slivers, model units
   double restore_seconds = 0;       // steps 3-6
   double fraction(double x) const { return bbox_diagonal > 0 ? x / bbox_diagonal : 0; }
 };
