@@ -33,7 +33,17 @@ DecompositionFolder read_decomposition(const std::filesystem::path& outdir) {
     if (doc.value("format", "") != "subfab.decomposition")
       throw IoError(json_path.string() + ": not a subfab decomposition (\"format\" is not \"subfab.decomposition\")");
     f.input_path = doc.at("input").value("path", "");
-    f.repaired = doc.at("input").contains("repair") && !doc.at("input").at("repair").is_null();
+    const Json& input = doc.at("input");
+    const bool smoothed = input.contains("smoothing") && input.at("smoothing").is_object();
+    const bool feature_repair = input.contains("repair") && !input.at("repair").is_null();
+    // the file the blocks decompose (older files: the repaired input only)
+    f.decomposed_mesh = input.value("decomposed_mesh", feature_repair ? "input_repaired.obj" : f.input_path);
+    if (f.decomposed_mesh == f.input_path) f.decomposed_mesh.clear();
+    f.repaired = !f.decomposed_mesh.empty();
+    f.model_label = !f.repaired ? "input model"
+                    : !smoothed ? "repaired input"
+                    : input.at("smoothing").value("restored", true) ? "restored input"
+                                                                    : "smoothed input";
     f.bbox_diagonal = doc.at("input").value("bbox_diagonal", 0.0);
     const Json& rot = doc.at("rotation");
     for (int r = 0; r < 3; ++r)
@@ -69,7 +79,7 @@ DecompositionFolder read_decomposition(const std::filesystem::path& outdir) {
 std::optional<Mesh> read_decomposed_model(const DecompositionFolder& folder, std::string* note) {
   std::vector<std::filesystem::path> candidates;
   if (folder.repaired) {
-    candidates.push_back(folder.folder / "input_repaired.obj");
+    if (!folder.decomposed_mesh.empty()) candidates.push_back(folder.folder / folder.decomposed_mesh);
   } else if (!folder.input_path.empty()) {
     const std::filesystem::path p(folder.input_path);
     candidates.push_back(p);

@@ -32,7 +32,7 @@ ViewScene decomposition_scene(const DecompositionFolder& folder, const Mesh* mod
   ViewScene scene;
   scene.title = "subfab decomposition: " + std::to_string(folder.blocks.size()) + " blocks";
   scene.subtitle = folder.input_path.empty() ? folder.folder.string() : folder.input_path;
-  scene.ghost_label = folder.repaired ? "repaired input" : "input model";
+  scene.ghost_label = folder.model_label;
   BoundingBox all;
   double total_volume = 0;
   for (const DecompositionBlock& b : folder.blocks) {

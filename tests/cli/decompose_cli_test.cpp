@@ -10,7 +10,9 @@
 #include "support/block_test_shapes.h"
 #include "support/groove_shapes.h"
 #include "support/smooth_test_shapes.h"
+#include "subfab/mesh/read_mesh.h"
 #include "subfab/mesh/write_mesh.h"
+#include "subfab/view/read_decomposition.h"
 #include "support/test_support.h"
 
 namespace subfab {
@@ -272,6 +274,14 @@ TEST(DecomposeCli, SmoothWithAToleranceDecomposesTheSmoothedModelWithinIt) {
   EXPECT_FALSE(s.at("restored").get<bool>());
   EXPECT_EQ(doc.at("input").at("decomposed_mesh").get<std::string>(), "input_smoothed.obj");
   EXPECT_NEAR(doc.at("parameters").at("tolerance_fraction").get<double>(), 0.05, 1e-12);
+  // what a later view of the folder shows: the smoothed model, so labelled
+  const DecompositionFolder folder = read_decomposition(out);
+  EXPECT_EQ(folder.decomposed_mesh, "input_smoothed.obj");
+  EXPECT_STREQ(folder.model_label, "smoothed input");
+  const std::optional<Mesh> model = read_decomposed_model(folder);
+  ASSERT_TRUE(model.has_value());
+  EXPECT_EQ(model->vertices, read_mesh(out / "input_smoothed.obj").vertices);
+  EXPECT_NE(model->vertices, read_mesh(mesh).vertices);
   EXPECT_LE(s.at("max_deviation_fraction").get<double>(), 0.01 * (1 + 1e-12));
   const double total = s.at("total_deviation_bound_fraction").get<double>();
   EXPECT_GT(total, s.at("max_deviation_fraction").get<double>());

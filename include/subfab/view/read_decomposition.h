@@ -32,7 +32,10 @@ struct DecompositionBlock {
 struct DecompositionFolder {
   std::filesystem::path folder;
   std::string input_path;   // "input.path" of decomposition.json (as given to decompose)
-  bool repaired = false;    // the blocks decompose OUTDIR/input_repaired.obj, not the input
+  bool repaired = false;    // the blocks decompose a model decompose wrote into OUTDIR, not the input
+  std::string decomposed_mesh;  // that model, OUTDIR-relative ("input.decomposed_mesh"; empty: the input)
+  const char* model_label = "input model";  // what the blocks decompose, for the view: "input model",
+                                            // "repaired input", "smoothed input" or "restored input"
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  // input frame -> decomposition frame
   double bbox_diagonal = 0; // of the input, model units
   std::vector<DecompositionBlock> blocks;
@@ -43,8 +46,8 @@ struct DecompositionFolder {
 //!        the key, and says to run `subfab decompose` again).
 DecompositionFolder read_decomposition(const std::filesystem::path& outdir);
 
-//! The model the blocks decompose: OUTDIR/input_repaired.obj when the input
-//! was repaired, else the input, looked for at input.path as written, then
+//! The model the blocks decompose: the one decompose wrote into OUTDIR when
+//! it repaired, smoothed or restored the input (OUTDIR/input_*.obj), else the input, looked for at input.path as written, then
 //! relative to OUTDIR and to its parent. nullopt when none can be read; then
 //! `*note` (if given) says what was tried.
 std::optional<Mesh> read_decomposed_model(const DecompositionFolder& folder, std::string* note = nullptr);
