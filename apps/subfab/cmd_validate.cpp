@@ -368,6 +368,8 @@ int run_validate(const ValidateArgs& args) {
     if (!args.common.quiet) progress.warn(repair_note);
   }
   options.tolerance = tolerance_fraction * diagonal;
+  // --against-input: slivers are judged at the tolerance the blocks were made within, as decompose judged them
+  if (args.against_input && !args.tolerance) options.sliver_tolerance = recorded_tolerance * diagonal;
   std::string tolerance_note;
   if (tolerance_fraction > 0) {
     std::ostringstream note;
@@ -456,7 +458,7 @@ void add_validate_options(CLI::App& sub, ValidateArgs& args) {
                "Check the blocks against MESH itself even where decompose repaired, smoothed or restored it "
                "(default: against what the blocks decompose, OUTDIR/input_*.obj): checks 4, 5 and 10 then allow "
                "the recorded tolerance plus the recorded deviations of that model from MESH (they add up), unless "
-               "--tolerance is given; check 9's threshold follows that tolerance");
+               "--tolerance is given; check 9 judges slivers at the recorded tolerance, as decompose did");
 }
 
 const RegisterCommand kRegisterValidate(make_command<ValidateArgs>(

@@ -537,7 +537,8 @@ ValidationReport validate_decomposition(const Mesh& input, const std::vector<Val
   {
     StageScope stage(progress, "check: slivers");
     report.sliver_thickness =
-        sliver_threshold(options.sliver_thickness * diagonal, options.tolerance, options.limits.max_height);
+        sliver_threshold(options.sliver_thickness * diagonal, options.sliver_tolerance.value_or(options.tolerance),
+                         options.limits.max_height);
     std::vector<SliverBlock> sb(n);
     for (std::size_t i = 0; i < n; ++i) {
       sb[i].mesh = &blocks[i].mesh;

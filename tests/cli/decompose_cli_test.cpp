@@ -297,6 +297,8 @@ TEST(DecomposeCli, SmoothWithAToleranceDecomposesTheSmoothedModelWithinIt) {
   EXPECT_TRUE(aj.at("against_input").get<bool>());
   EXPECT_NEAR(aj.at("tolerance_fraction").get<double>(), 0.05 + s.at("max_deviation_fraction").get<double>(), 1e-9);
   EXPECT_GT(aj.at("deviation").at("max_fraction").get<double>(), 0.0);
+  // slivers judged at the tolerance the blocks were made within, as decompose judged them
+  EXPECT_NEAR(aj.at("thickness").at("sliver_threshold_fraction").get<double>(), 0.05, 1e-9);
   // an overhang allowance does not combine with it
   const auto m = run_subfab("decompose " + quoted(mesh) + " -o " + quoted(dir / "m") +
                             " --smooth --tolerance 0.05 --max-overhang 5 --quiet --no-view");

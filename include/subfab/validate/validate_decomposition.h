@@ -175,6 +175,9 @@ struct ValidationOptions {
   double limit_tolerance = 1e-6;      // check 6 and 7: slack / bbox diagonal
   double sliver_thickness = 1e-4;     // check 9: blocks thinner than max(this x diagonal, tolerance)
                                       // where the model is thicker are slivers (fraction of the diagonal)
+  std::optional<double> sliver_tolerance;  // check 9's tolerance (model units) when not `tolerance` (the one
+                                      // the blocks were made within, where `tolerance` adds a recorded
+                                      // deviation of the decomposed model: `validate --against-input`)
   ValidationLimits limits;            // check 6
   double tolerance = 0.0;             // deviation allowed (model units; the decomposition's --tolerance):
                                       // when > 0, blocks may stick out of the input (check 4 lists them),
