@@ -23,11 +23,10 @@ from the test suite.
 import argparse
 import json
 import os
-import subprocess
 import sys
-import time
 
-from bench_common import add_common_arguments
+from bench_common import add_common_arguments, peak_rss_mb
+from run_sweep import timed_run
 
 # The authors' own Taubin factors (their tool's defaults)
 FACTORS = ["--smooth-lambda", "0.89", "--smooth-mu", "-0.9"]
@@ -45,26 +44,25 @@ RUNS = [
 THESIS = {"Max Planck": (8, 1.08e-2), "Bimba": (16, 1.01e-2), "Kitten": (25, 1.36e-2)}
 
 
-def run(cmd, dry_run):
+def run(args, cmd):
+    """run_sweep.timed_run (exit code or None on timeout, stdout, stderr, wall s); None with --dry-run."""
     print("$ " + " ".join(cmd), file=sys.stderr)
-    if dry_run:
-        return None, 0.0
-    start = time.monotonic()
-    p = subprocess.run(cmd, capture_output=True, text=True)
-    return p, time.monotonic() - start
+    return None if args.dry_run else timed_run(cmd, args.timeout)
 
 
 def validate_json(args, model, outdir, against):
     cmd = [args.subfab, "validate", model, outdir, "--json", "--quiet", "--threads", str(args.threads)]
     if against:
         cmd.append("--against-input")
-    p, seconds = run(cmd, args.dry_run)
-    if p is None:
+    done = run(args, cmd)
+    if done is None:
         return None
+    _, out, err, seconds = done
     try:
-        j = json.loads(p.stdout)
+        j = json.loads(out)
     except json.JSONDecodeError:
-        return {"passed": False, "error": p.stderr.strip().splitlines()[-1:] or ["no output"]}
+        return {"passed": False, "error": [line for line in err.splitlines() if line.startswith("error:")][-1:]
+                or ["no output"]}
     j["seconds"] = seconds
     return j
 
@@ -76,13 +74,16 @@ def one(args, name, file, height, cap, passes, tolerance):
            *FACTORS, "--tolerance", "%g" % tolerance, "--threads", str(args.threads), "--no-view", "--quiet"]
     if height is not None:
         cmd += ["--max-height", "%g" % height]
-    p, seconds = run(cmd, args.dry_run)
+    done = run(args, cmd)
     row = {"model": name, "height": height, "cap": cap, "passes": passes, "tolerance": tolerance,
-           "decompose_s": seconds}
-    if p is None:
+           "decompose_s": done[3] if done else 0.0}
+    if done is None:
         return row
-    if p.returncode not in (0, 3) or not os.path.exists(os.path.join(outdir, "decomposition.json")):
-        row["error"] = (p.stderr.strip().splitlines() or ["exit %d" % p.returncode])[-1]
+    rc, _, err, _ = done
+    row["peak_rss_mb"] = peak_rss_mb(err)
+    if rc not in (0, 3) or not os.path.exists(os.path.join(outdir, "decomposition.json")):
+        errors = [line for line in err.splitlines() if line.startswith("error:")]
+        row["error"] = errors[-1] if errors else "timeout" if rc is None else "exit %d" % rc
         return row
     with open(os.path.join(outdir, "decomposition.json")) as f:
         doc = json.load(f)
@@ -129,6 +130,7 @@ def main():
     ap.add_argument("--only", nargs="*", help="run only these models (name or file stem; case-insensitive)")
     ap.add_argument("--against-input", action="store_true", help="also validate against the input itself")
     ap.add_argument("--dry-run", action="store_true", help="print the commands only")
+    ap.add_argument("--timeout", type=float, default=3600.0, help="per command, seconds")
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
     wanted = {n.lower() for n in args.only} if args.only else None

@@ -74,54 +74,46 @@ Vec3 parse_machine(const std::string& text) {
 
 //! The "input"."smoothing" record of decomposition.json (and of --json).
 nlohmann::ordered_json smoothing_record(const SmoothedDecomposeReport& r, const SmoothOptions& o) {
-  if (r.within_tolerance)  // decomposed within a tolerance, not restored: the blocks decompose the smoothed model
-    return {{"mesh", kSmoothedInputFile},
-            {"smoothed_mesh", kSmoothedInputFile},
-            {"restored", false},
-            {"cap_fraction", o.max_deviation},
-            {"passes", r.smooth.num_passes},
-            {"lambda", o.lambda},
-            {"mu", o.mu},
-            {"num_blocks", r.num_blocks},
-            // the smoothed model (what the blocks decompose) from the input: its vertices' largest move
-            // bounds the Hausdorff distance (measured within hausdorff_error: smoothed_max_deviation_fraction)
-            {"max_deviation", r.decomposed_deviation},
-            {"mean_deviation", r.smoothed_mean_deviation},
-            {"max_deviation_fraction", r.fraction(r.decomposed_deviation)},
-            {"mean_deviation_fraction", r.fraction(r.smoothed_mean_deviation)},
-            {"hausdorff_error", r.smooth.hausdorff_error},
-            {"smoothed_max_deviation_fraction", r.fraction(r.smooth.hausdorff)},
-            {"smoothed_mean_deviation_fraction", r.fraction(r.smoothed_mean_deviation)},
-            {"tolerance", r.tolerance},
-            {"tolerance_fraction", r.fraction(r.tolerance)},
-            // the blocks from the input: smoothing + the tolerance's measured bound (triangle inequality)
-            {"total_deviation_bound", r.max_deviation},
-            {"total_deviation_bound_fraction", r.fraction(r.max_deviation)},
-            {"smooth_seconds", r.smooth.seconds}};
-  return {{"mesh", kRestoredInputFile},
-          {"restored", true},
-          {"smoothed_mesh", kSmoothedInputFile},
-          {"cap_fraction", o.max_deviation},
-          {"passes", r.smooth.num_passes},
-          {"lambda", o.lambda},
-          {"mu", o.mu},
-          {"num_blocks_smoothed", r.num_blocks_smoothed},
-          {"num_blocks", r.num_blocks},
-          {"max_deviation", r.max_deviation},
-          {"mean_deviation", r.mean_deviation},
-          {"max_deviation_fraction", r.fraction(r.max_deviation)},
-          {"mean_deviation_fraction", r.fraction(r.mean_deviation)},
-          {"hausdorff_error", r.deviation_error},
-          {"smoothed_max_deviation_fraction", r.fraction(r.smooth.hausdorff)},
-          {"smoothed_mean_deviation_fraction", r.fraction(r.smoothed_mean_deviation)},
-          {"num_vertices_restored", r.restore.num_restored},
-          {"num_vertices_at_smoothed", r.restore.num_at_smoothed},
-          {"num_vertices_held_on_box", r.restore.num_held_on_box},
-          {"num_vertices_held_back", r.restore.num_held_back},
-          {"num_restore_rounds", r.restore.num_rounds},
-          {"num_carve_rounds", r.num_carve_rounds},
-          {"smooth_seconds", r.smooth.seconds},
-          {"restore_seconds", r.restore_seconds}};
+  // What the blocks decompose, and its deviation from the input: the restored
+  // solid (measured), or within a tolerance the smoothed model (its vertices'
+  // largest move bounds its Hausdorff distance; measured within
+  // hausdorff_error: smoothed_max_deviation_fraction).
+  const bool restored = !r.within_tolerance;
+  const double max = restored ? r.max_deviation : r.decomposed_deviation;
+  const double mean = restored ? r.mean_deviation : r.smoothed_mean_deviation;
+  nlohmann::ordered_json j = {{"mesh", restored ? kRestoredInputFile : kSmoothedInputFile},
+                              {"smoothed_mesh", kSmoothedInputFile},
+                              {"restored", restored},
+                              {"cap_fraction", o.max_deviation},
+                              {"passes", r.smooth.num_passes},
+                              {"lambda", o.lambda},
+                              {"mu", o.mu}};
+  if (restored) j["num_blocks_smoothed"] = r.num_blocks_smoothed;
+  j["num_blocks"] = r.num_blocks;
+  j["max_deviation"] = max;
+  j["mean_deviation"] = mean;
+  j["max_deviation_fraction"] = r.fraction(max);
+  j["mean_deviation_fraction"] = r.fraction(mean);
+  j["hausdorff_error"] = restored ? r.deviation_error : r.smooth.hausdorff_error;
+  j["smoothed_max_deviation_fraction"] = r.fraction(r.smooth.hausdorff);
+  j["smoothed_mean_deviation_fraction"] = r.fraction(r.smoothed_mean_deviation);
+  if (restored) {
+    j["num_vertices_restored"] = r.restore.num_restored;
+    j["num_vertices_at_smoothed"] = r.restore.num_at_smoothed;
+    j["num_vertices_held_on_box"] = r.restore.num_held_on_box;
+    j["num_vertices_held_back"] = r.restore.num_held_back;
+    j["num_restore_rounds"] = r.restore.num_rounds;
+    j["num_carve_rounds"] = r.num_carve_rounds;
+  } else {
+    j["tolerance"] = r.tolerance;
+    j["tolerance_fraction"] = r.fraction(r.tolerance);
+    // the blocks from the input: smoothing + the tolerance's measured bound (triangle inequality)
+    j["total_deviation_bound"] = r.max_deviation;
+    j["total_deviation_bound_fraction"] = r.fraction(r.max_deviation);
+  }
+  j["smooth_seconds"] = r.smooth.seconds;
+  if (restored) j["restore_seconds"] = r.restore_seconds;
+  return j;
 }
 
 int run_decompose(const DecomposeArgs& args) {

@@ -39,8 +39,7 @@ DecompositionFolder read_decomposition(const std::filesystem::path& outdir) {
     // the file the blocks decompose (older files: the repaired input only)
     f.decomposed_mesh = input.value("decomposed_mesh", feature_repair ? "input_repaired.obj" : f.input_path);
     if (f.decomposed_mesh == f.input_path) f.decomposed_mesh.clear();
-    f.repaired = !f.decomposed_mesh.empty();
-    f.model_label = !f.repaired ? "input model"
+    f.model_label = f.decomposed_mesh.empty() ? "input model"
                     : !smoothed ? "repaired input"
                     : input.at("smoothing").value("restored", true) ? "restored input"
                                                                     : "smoothed input";
@@ -78,8 +77,8 @@ DecompositionFolder read_decomposition(const std::filesystem::path& outdir) {
 
 std::optional<Mesh> read_decomposed_model(const DecompositionFolder& folder, std::string* note) {
   std::vector<std::filesystem::path> candidates;
-  if (folder.repaired) {
-    if (!folder.decomposed_mesh.empty()) candidates.push_back(folder.folder / folder.decomposed_mesh);
+  if (!folder.decomposed_mesh.empty()) {
+    candidates.push_back(folder.folder / folder.decomposed_mesh);
   } else if (!folder.input_path.empty()) {
     const std::filesystem::path p(folder.input_path);
     candidates.push_back(p);

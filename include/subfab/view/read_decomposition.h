@@ -32,8 +32,8 @@ struct DecompositionBlock {
 struct DecompositionFolder {
   std::filesystem::path folder;
   std::string input_path;   // "input.path" of decomposition.json (as given to decompose)
-  bool repaired = false;    // the blocks decompose a model decompose wrote into OUTDIR, not the input
-  std::string decomposed_mesh;  // that model, OUTDIR-relative ("input.decomposed_mesh"; empty: the input)
+  std::string decomposed_mesh;  // the model the blocks decompose when decompose wrote it into OUTDIR (repaired,
+                                // smoothed or restored), OUTDIR-relative ("input.decomposed_mesh"); empty: the input
   const char* model_label = "input model";  // what the blocks decompose, for the view: "input model",
                                             // "repaired input", "smoothed input" or "restored input"
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  // input frame -> decomposition frame
