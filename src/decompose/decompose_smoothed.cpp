@@ -20,6 +20,8 @@
 #include "subfab/decompose/finalize_blocks.h"
 #include "subfab/decompose/merge_blocks.h"
 #include "subfab/decompose/orient_mesh.h"
+#include "subfab/fidelity/find_infeasible_features.h"
+#include "subfab/geometry/coordinate_rounding.h"
 #include "subfab/validate/validate_decomposition.h"
 
 namespace subfab {
@@ -153,6 +155,39 @@ double whole_surface_mean(const Mesh& input, const Mesh& modified, double error,
   return area > 0 ? d.mean * changed_area / area : 0.0;
 }
 
+//! decompose() of the smoothed model. Where it fails and the input itself
+//! has no feature a height-field block cannot cover (in the frame
+//! decompose() would choose for it), the smoothing made the trouble: on a
+//! CAD part it rounds sharp edges and tilts flat faces off the axes (a part
+//! decomposed exactly in 2 blocks failed after 40 s of repair). The error
+//! then says so and what to do instead.
+DecomposeResult decompose_the_smoothed(const Mesh& input, const Mesh& smoothed, const DecomposeOptions& d) {
+  try {
+    return decompose(smoothed, d);
+  } catch (const AlgorithmError& e) {
+    bool input_feasible = false;
+    try {
+      OrientOptions o;
+      const double diagonal = bounding_box(input).diagonal();
+      if (diagonal > 0)
+        o.precision_snap_tolerance = std::min(4 * coordinate_rounding(input) / diagonal, d.max_precision_snap);
+      input_feasible = d.orient ? orient_mesh(input, o).infeasible.feasible() : find_infeasible_features(input).feasible();
+    } catch (const std::exception&) {
+      input_feasible = false;  // unknown: the original error stands alone
+    }
+    if (!input_feasible) throw;
+    std::string what = e.what();
+    while (!what.empty() && what.back() == '.') what.pop_back();
+    throw AlgorithmError(std::string("the smoothing made features no height-field block can cover: the input itself has "
+                                     "none in ") +
+                         (d.orient ? "the frame decompose would choose for it" : "its own frame") +
+                         ", the smoothed model fails (it rounds sharp edges and tilts flat faces off the axes, as on "
+                         "a CAD part). --smooth is meant for scanned and sculpted models: decompose this one without "
+                         "--smooth (exact blocks), or with --tolerance F alone. What failed on the smoothed model: " +
+                         what);
+  }
+}
+
 //! `--smooth` with `--tolerance`: the smoothed model decomposed within the
 //! tolerance (the allowances of decompose(), issue 17); no restoration (the
 //! blocks' milled shapes are measured against the smoothed model). The
@@ -170,7 +205,7 @@ SmoothedDecomposeResult decompose_smoothed_within(const Mesh& input, SmoothResul
   d.tolerance_fraction = 1.0;  // the tolerance in model units (of the input's diagonal)
   d.tolerance_abs = tolerance;
   d.fallback_tolerance_fraction = 0.0;
-  DecomposeResult result = decompose(smoothed.mesh, d);
+  DecomposeResult result = decompose_the_smoothed(input, smoothed.mesh, d);
   report.within_tolerance = true;
   report.tolerance = tolerance;
   report.num_blocks_smoothed = report.num_blocks = result.blocks.size();
@@ -225,7 +260,7 @@ SmoothedDecomposeResult decompose_smoothed(const Mesh& input_mesh, const Smoothe
   if (tolerance > 0) return decompose_smoothed_within(input, std::move(smoothed), d, tolerance, std::move(out));
 
   // 2. decompose the smoothed model
-  DecomposeResult result = decompose(smoothed.mesh, d);
+  DecomposeResult result = decompose_the_smoothed(input, smoothed.mesh, d);
   if (result.repaired_input)
     throw AlgorithmError("the smoothed model (cap " + std::to_string(options.smooth.max_deviation) +
                          " x diagonal) still has " + std::to_string(result.repair.num_features) +

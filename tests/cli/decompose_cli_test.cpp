@@ -256,6 +256,29 @@ TEST(DecomposeCli, ToleranceAbsAloneIsTheTolerance) {
   EXPECT_EQ(both_blocks, exact_blocks);               // 0.17 < the groove's depth
 }
 
+// --smooth on a CAD part: the smoothing rounds its edges and tilts its flat
+// faces off the axes, so the smoothed model has creases no block covers while
+// the input has none (joint.off: 2 exact blocks). The error says the
+// smoothing made them and what to do; where the input has such features too
+// (the diagonal spike), it does not claim so.
+TEST(DecomposeCli, SmoothOnACadPartSaysTheSmoothingMadeTheFeatures) {
+  const fs::path dir = test::temp_dir();
+  const fs::path joint = test::data_path("joint.off");
+  const auto plain = run_subfab("decompose " + quoted(joint) + " -o " + quoted(dir / "plain") + " --no-view --threads 1");
+  ASSERT_EQ(plain.exit_code, 0) << plain.output;
+  const auto r = run_subfab("decompose " + quoted(joint) + " -o " + quoted(dir / "smoothed") +
+                            " --smooth=0.01 --smooth-passes 5 --exact --no-view --threads 1");
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find("the smoothing made features no height-field block can cover"), std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("without --smooth"), std::string::npos) << r.output;
+  const auto spike = run_subfab("decompose " + quoted(test::data_path("regression/cube_tiny_diagonal_spike.obj")) +
+                                " -o " + quoted(dir / "spike") +
+                                " --smooth=0.0001 --smooth-passes 2 --exact --no-view --threads 1");
+  EXPECT_EQ(spike.exit_code, 3) << spike.output;
+  EXPECT_EQ(spike.output.find("the smoothing made"), std::string::npos) << spike.output;
+}
+
 // --smooth with --tolerance: the smoothed model decomposed within the
 // tolerance, recorded as such; validate checks the blocks against it.
 TEST(DecomposeCli, SmoothWithAToleranceDecomposesTheSmoothedModelWithinIt) {
