@@ -10,9 +10,11 @@
 //! boolean run on another thread could triangulate its cut faces
 //! differently. While a DeterministicArena lives, every `operator new` of
 //! the current thread is served by a private bump allocator over one
-//! reserved address range: addresses then grow with allocation order, which
-//! is a property of the computation alone. Memory is given back when the
-//! arena ends, all at once.
+//! reserved address range: addresses then follow from the thread's sequence
+//! of allocations and frees, which is a property of the computation alone.
+//! Freed blocks are reused (per size class, last freed first), so the arena
+//! holds about the computation's live peak; the address range is given back
+//! when the arena ends, all at once.
 //!
 //! Rules: every object allocated while the arena is active must be
 //! destroyed before the arena ends (results the caller keeps must be built
@@ -29,7 +31,9 @@ namespace subfab::detail {
 class DeterministicArena {
  public:
   //! \param reserve_bytes address space reserved (not committed) for the arena
-  explicit DeterministicArena(std::size_t reserve_bytes = std::size_t{64} << 30);
+  //! \param reuse_freed false: a pure bump allocator (addresses grow with
+  //!        allocation order; nothing freed is reused before the arena ends)
+  explicit DeterministicArena(std::size_t reserve_bytes = std::size_t{64} << 30, bool reuse_freed = true);
   ~DeterministicArena();
   DeterministicArena(const DeterministicArena&) = delete;
   DeterministicArena& operator=(const DeterministicArena&) = delete;
@@ -61,10 +65,10 @@ class SuspendArena {
 //! it has none), or an empty string when `work` returned normally.
 //! Whatever `work` hands back must be built under a SuspendArena.
 template <class Work>
-std::string run_in_arena(Work&& work) {
+std::string run_in_arena(Work&& work, bool reuse_freed = true) {
   std::string error;
   {
-    DeterministicArena arena;
+    DeterministicArena arena(std::size_t{64} << 30, reuse_freed);
     try {
       work();
     } catch (const std::exception& e) {

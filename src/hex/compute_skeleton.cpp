@@ -87,7 +87,10 @@ Skeleton compute_skeleton(const Mesh& mesh, const ComputeSkeletonOptions& option
     StageScope stage(options.progress, "skeleton (mean curvature flow)");
     // CGAL's flow orders some edge collapses by handle address: a private
     // bump allocator makes addresses follow allocation order, so the result
-    // does not depend on the heap's history (threads, earlier work).
+    // does not depend on the heap's history (threads, earlier work). Freed
+    // memory is not reused here (reuse_freed = false): the skeletons, and the
+    // hexahedral meshes measured in bench/RESULTS.md, stay those of the plain
+    // bump allocator; the flow's memory is small.
     bool empty = false;
     warm_up_flow();
     // An exception must not carry arena memory out (its message would be
@@ -122,7 +125,7 @@ Skeleton compute_skeleton(const Mesh& mesh, const ComputeSkeletonOptions& option
         raw.add_node(Vec3(point.x(), point.y(), point.z()), radii[i] > 0 ? radii[i] : tiny);
       }
       for (const auto& [a, b] : edges) raw.add_edge(static_cast<int>(a), static_cast<int>(b));
-    });
+    }, /*reuse_freed=*/false);
     if (!error.empty())
       throw AlgorithmError("the mean-curvature-flow skeleton failed (" + error + "); pass a skeleton with --skeleton");
     if (empty) throw AlgorithmError("the mean-curvature-flow skeleton is empty; pass a skeleton with --skeleton");
