@@ -66,6 +66,7 @@ void check_options(const DecomposeOptions& o) {
   if (std::isnan(o.tolerance_abs) || o.tolerance_abs < 0)
     throw InvalidArgumentError("--tolerance-abs must be a length in model units >= 0");
   if (o.tolerance_rounds < 1) throw InvalidArgumentError("tolerance_rounds must be at least 1");
+  if (std::isnan(o.tolerance_exact_margin)) throw InvalidArgumentError("tolerance_exact_margin must be a number");
   if (!(o.tolerance_floor_scale >= 0) || !std::isfinite(o.tolerance_floor_scale))
     throw InvalidArgumentError("tolerance_floor_scale must be a non-negative finite number");
   if (o.tolerance_depth_fractions.empty() ||
@@ -399,6 +400,13 @@ std::vector<std::uint8_t> pinned_allowances(const Mesh& solid, const Feasibility
 //! The thin-feature repair gave up at tolerance 0 (decompose() may then
 //! decompose within options.fallback_tolerance_fraction instead).
 class RepairGaveUp : public AlgorithmError {
+ public:
+  using AlgorithmError::AlgorithmError;
+};
+
+//! A round under allowances carved too many blocks to beat the exact
+//! decomposition made first (DecomposeOptions::tolerance_exact_margin).
+class NotFewerThanExact : public AlgorithmError {
  public:
   using AlgorithmError::AlgorithmError;
 };
@@ -971,11 +979,13 @@ std::size_t recarve_slivers(const Mesh& solid, const Mesh& input, const Decompos
 //! allowances alone (never when none are pinned). `carve_limit` > 0: throws
 //! FallbackGivenUp when a round under allowances carves at least that many
 //! blocks (decompose()'s rule for the re-decomposition within the fallback
-//! tolerance), before its blocks are milled and measured.
+//! tolerance), before its blocks are milled and measured. `exact_limit` > 0:
+//! the same with NotFewerThanExact (the exact decomposition made first has
+//! so few blocks that this round cannot pay off).
 bool stages_within_tolerance(const Mesh& solid, const std::vector<std::array<double, 3>>& depths,
                              const std::vector<std::uint8_t>& pinned, const Mesh& input,
                              const DecomposeOptions& options, DecomposeResult& result, std::vector<Block>& blocks,
-                             std::vector<char>& filled, std::size_t carve_limit) {
+                             std::vector<char>& filled, std::size_t carve_limit, std::size_t exact_limit) {
   Progress* progress = options.progress;
   const std::vector<double>& fractions = options.tolerance_depth_fractions;
   std::vector<std::array<std::uint8_t, 3>> level(solid.num_faces(), {0, 0, 0});
@@ -1004,6 +1014,9 @@ bool stages_within_tolerance(const Mesh& solid, const std::vector<std::array<dou
     if (carve_limit > 0 && blocks.size() >= carve_limit)
       throw FallbackGivenUp("round " + std::to_string(round + 1) + " carved " + std::to_string(blocks.size()) +
                             " blocks, at least " + std::to_string(carve_limit));
+    if (exact_limit > 0 && num_allowed > 0 && blocks.size() >= exact_limit)
+      throw NotFewerThanExact("round " + std::to_string(round + 1) + " under allowances carved " +
+                              std::to_string(blocks.size()) + " blocks, at least " + std::to_string(exact_limit));
     if (num_allowed == 0) return true;
     ++result.num_tolerance_rounds;
     const bool last_round = round + 1 >= options.tolerance_rounds;
@@ -1153,8 +1166,38 @@ DecomposeResult decompose_once(const Mesh& input, const DecomposeOptions& option
   DecomposeResult base = result;  // before the stages (within a tolerance the exact path is made too)
   std::vector<Block> blocks;
   std::vector<char> filled;
+  // Within a tolerance with no pinned allowance, the exact decomposition is
+  // made first: a round under allowances that carves far more blocks is
+  // then given up before its (costly) measure (tolerance_exact_margin).
+  std::optional<DecomposeResult> exact_made;
+  bool exact_kept = false;
+  if (result.tolerance > 0 && count_allowed_faces(pinned) == 0 && options.tolerance_exact_margin >= 0) {
+    exact_made = base;
+    std::vector<char> none;
+    merge_stage(carve_stages(solid, nullptr, input, options, *exact_made), none, options, *exact_made);
+  }
   if (result.tolerance > 0) {
-    if (!stages_within_tolerance(solid, depths, pinned, input, options, result, blocks, filled, carve_limit)) {
+    std::size_t exact_limit = 0;
+    if (exact_made) {
+      const auto e = static_cast<double>(exact_made->blocks.size());
+      exact_limit = static_cast<std::size_t>(std::max(e + 2, std::ceil((1 + options.tolerance_exact_margin) * e)));
+    }
+    // the exact stages' time counts in the result's, whichever is kept
+    const DecomposeTimings exact_time = exact_made ? exact_made->timings : base.timings;
+    const auto add_exact_time = [&](DecomposeResult& r) {
+      DecomposeTimings& t = r.timings;
+      const DecomposeTimings& b = base.timings;
+      t.field += exact_time.field - b.field;
+      t.grow += exact_time.grow - b.grow;
+      t.cover += exact_time.cover - b.cover;
+      t.resolve += exact_time.resolve - b.resolve;
+      t.carve += exact_time.carve - b.carve;
+    };
+    try {
+      const bool passed =
+          stages_within_tolerance(solid, depths, pinned, input, options, result, blocks, filled, carve_limit, exact_limit);
+      if (exact_made) add_exact_time(result);
+      if (!passed) {
       if (progress)
         progress->warn("the blocks holding the feature(s) within the tolerance fail its measure with only their "
                        "allowances: repairing the features instead");
@@ -1170,20 +1213,44 @@ DecomposeResult decompose_once(const Mesh& input, const DecomposeOptions& option
       depths = depths_within(solid, options, result);
       base = result;
       filled.clear();
-      stages_within_tolerance(solid, depths, pinned, input, options, result, blocks, filled, carve_limit);
+      stages_within_tolerance(solid, depths, pinned, input, options, result, blocks, filled, carve_limit, 0);
+      }
+    } catch (const NotFewerThanExact& e) {
+      // the exact blocks, made first (their time and the round's counted)
+      if (progress)
+        progress->info(std::string("within the tolerance: ") + e.what() + ", the exact decomposition has " +
+                       std::to_string(exact_made->blocks.size()) + ": the exact blocks are kept, nothing measured");
+      DecomposeTimings t = exact_made->timings;
+      t.field += result.timings.field - base.timings.field;
+      t.grow += result.timings.grow - base.timings.grow;
+      t.cover += result.timings.cover - base.timings.cover;
+      t.resolve += result.timings.resolve - base.timings.resolve;
+      t.carve += result.timings.carve - base.timings.carve;
+      t.tolerance += result.timings.tolerance - base.timings.tolerance;
+      const std::size_t rounds = result.num_tolerance_rounds;
+      const std::size_t allowed = result.num_allowed_faces, floored = result.num_floored_faces;
+      result = std::move(*exact_made);
+      exact_made.reset();
+      result.timings = t;
+      result.num_tolerance_rounds = static_cast<int>(rounds);
+      result.num_allowed_faces = allowed;
+      result.num_floored_faces = floored;
+      filled.clear();
+      exact_kept = true;
     }
   } else {
     blocks = carve_stages(solid, nullptr, input, options, result);
   }
 
   // 7. merge (4.3.4 post-processing)
-  merge_stage(std::move(blocks), filled, options, result);
+  if (!exact_kept) merge_stage(std::move(blocks), filled, options, result);
   // Within a tolerance, the allowances can also cost blocks (they change the
   // cover): the decomposition under the pinned allowances only (none: the
   // exact one) is made too and kept when it has no more blocks (and, with
   // pinned allowances, its milled shapes pass the measure).
-  if (result.tolerance > 0 && !filled.empty()) {
-    DecomposeResult exact = base;
+  if (result.tolerance > 0 && !exact_kept && (!filled.empty() || exact_made)) {
+    const bool made_first = exact_made.has_value();  // its time is already in result's
+    DecomposeResult exact = made_first ? std::move(*exact_made) : base;
     const bool any_pinned = count_allowed_faces(pinned) > 0;
     OverhangAllowances pinned_only;
     if (any_pinned) {
@@ -1192,9 +1259,10 @@ DecomposeResult decompose_once(const Mesh& input, const DecomposeOptions& option
                                                     -std::numeric_limits<double>::infinity(),
                                                     -std::numeric_limits<double>::infinity()});
     }
-    std::vector<Block> exact_blocks = carve_stages(solid, any_pinned ? &pinned_only : nullptr, input, options, exact);
     std::vector<char> exact_filled;
     bool usable = true;
+    std::vector<Block> exact_blocks;
+    if (!made_first) exact_blocks = carve_stages(solid, any_pinned ? &pinned_only : nullptr, input, options, exact);
     if (any_pinned) {
       MillToleranceResult milled = mill_stage(solid, std::move(exact_blocks), options, exact);
       usable = milled.num_failed() == 0;
@@ -1202,7 +1270,7 @@ DecomposeResult decompose_once(const Mesh& input, const DecomposeOptions& option
       exact_filled = std::move(milled.filled);
       exact.deviation_bound = milled.max_deviation;
     }
-    if (usable) merge_stage(std::move(exact_blocks), exact_filled, options, exact);
+    if (usable && !made_first) merge_stage(std::move(exact_blocks), exact_filled, options, exact);
     if (progress && usable)
       progress->info(std::string(any_pinned ? "decomposition with the features' allowances only: "
                                             : "exact decomposition: ") +
@@ -1211,12 +1279,16 @@ DecomposeResult decompose_once(const Mesh& input, const DecomposeOptions& option
     DecomposeTimings& t = exact.timings;
     const DecomposeTimings& a = result.timings;
     const DecomposeTimings& b = base.timings;
-    t.field += a.field - b.field;
-    t.grow += a.grow - b.grow;
-    t.cover += a.cover - b.cover;
-    t.resolve += a.resolve - b.resolve;
-    t.carve += a.carve - b.carve;
-    t.tolerance += a.tolerance - b.tolerance;
+    if (made_first) {
+      t = a;
+    } else {
+      t.field += a.field - b.field;
+      t.grow += a.grow - b.grow;
+      t.cover += a.cover - b.cover;
+      t.resolve += a.resolve - b.resolve;
+      t.carve += a.carve - b.carve;
+      t.tolerance += a.tolerance - b.tolerance;
+    }
     if (usable && exact.blocks.size() <= result.blocks.size()) {
       exact.num_allowed_faces = result.num_allowed_faces;
       exact.num_floored_faces = result.num_floored_faces;
@@ -1376,6 +1448,9 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
   DecomposeOptions within = options;
   within.tolerance_fraction = options.fallback_tolerance_fraction;
   within.tolerance_abs = std::numeric_limits<double>::infinity();
+  // the exact blocks are known to fail here (repair given up, or slivers):
+  // a round is never given up for carving more blocks than they have
+  within.tolerance_exact_margin = -1;
   const std::string instead = "Decomposing within a tolerance of " + std::to_string(options.fallback_tolerance_fraction) +
                               " x the bounding-box diagonal instead";
   DecomposeResult exact;
