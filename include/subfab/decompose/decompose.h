@@ -52,7 +52,10 @@ struct DecomposeOptions {
                                  // The frame search and the thin-feature repair stay exact (conservative).
   double tolerance_fraction = 0.0;  // --tolerance: deviation allowed, x bbox diagonal (0 = exact blocks only, the
                                     // thesis's exact decomposition); see merge_within_tolerance()
-  double tolerance_abs = std::numeric_limits<double>::infinity();  // --tolerance-abs: model units; the smaller wins
+  double tolerance_abs = std::numeric_limits<double>::infinity();  // --tolerance-abs: model units; the smaller of
+                                    // the two wins, so a tolerance in model units alone needs tolerance_fraction
+                                    // set too (1.0: a whole diagonal, as the command does for --tolerance-abs
+                                    // alone); with tolerance_fraction 0 the blocks are exact
   double fallback_tolerance_fraction = 0.0;  // at tolerance 0: when the thin-feature repair (4.3.5) gives up,
                                     // or the exact blocks include slivers (thinner than 1e-4 x diagonal where
                                     // the model is thicker; then also the exact blocks with their slivers
