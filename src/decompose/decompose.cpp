@@ -969,6 +969,17 @@ std::size_t recarve_slivers(const Mesh& solid, const Mesh& input, const Decompos
   return removed;
 }
 
+//! Adds the time the stages 2-6 spent between `before` and `after` (field,
+//! grow, cover, resolve, carve) to `t`: a result kept from two paths counts
+//! both.
+void add_stage_times(DecomposeTimings& t, const DecomposeTimings& after, const DecomposeTimings& before) {
+  t.field += after.field - before.field;
+  t.grow += after.grow - before.grow;
+  t.cover += after.cover - before.cover;
+  t.resolve += after.resolve - before.resolve;
+  t.carve += after.carve - before.carve;
+}
+
 //! Stages 2-6 of decompose() within a tolerance (issue 17) on `solid`:
 //! under the allowances of the faces whose undercut is within it, then
 //! every block replaced by its milled shape and measured; where one fails,
@@ -1168,13 +1179,20 @@ DecomposeResult decompose_once(const Mesh& input, const DecomposeOptions& option
   std::vector<char> filled;
   // Within a tolerance with no pinned allowance, the exact decomposition is
   // made first: a round under allowances that carves far more blocks is
-  // then given up before its (costly) measure (tolerance_exact_margin).
+  // then given up before its (costly) measure (tolerance_exact_margin). When
+  // the exact stages fail, the tolerance's blocks are kept whatever they are.
   std::optional<DecomposeResult> exact_made;
-  bool exact_kept = false;
+  bool exact_failed = false, exact_kept = false;
   if (result.tolerance > 0 && count_allowed_faces(pinned) == 0 && options.tolerance_exact_margin >= 0) {
-    exact_made = base;
-    std::vector<char> none;
-    merge_stage(carve_stages(solid, nullptr, input, options, *exact_made), none, options, *exact_made);
+    try {
+      exact_made = base;
+      std::vector<char> none;
+      merge_stage(carve_stages(solid, nullptr, input, options, *exact_made), none, options, *exact_made);
+    } catch (const AlgorithmError& e) {
+      if (progress) progress->info(std::string("the exact decomposition failed (") + e.what() + ")");
+      exact_made.reset();
+      exact_failed = true;
+    }
   }
   if (result.tolerance > 0) {
     std::size_t exact_limit = 0;
@@ -1182,59 +1200,41 @@ DecomposeResult decompose_once(const Mesh& input, const DecomposeOptions& option
       const auto e = static_cast<double>(exact_made->blocks.size());
       exact_limit = static_cast<std::size_t>(std::max(e + 2, std::ceil((1 + options.tolerance_exact_margin) * e)));
     }
-    // the exact stages' time counts in the result's, whichever is kept
-    const DecomposeTimings exact_time = exact_made ? exact_made->timings : base.timings;
-    const auto add_exact_time = [&](DecomposeResult& r) {
-      DecomposeTimings& t = r.timings;
-      const DecomposeTimings& b = base.timings;
-      t.field += exact_time.field - b.field;
-      t.grow += exact_time.grow - b.grow;
-      t.cover += exact_time.cover - b.cover;
-      t.resolve += exact_time.resolve - b.resolve;
-      t.carve += exact_time.carve - b.carve;
-    };
     try {
       const bool passed =
           stages_within_tolerance(solid, depths, pinned, input, options, result, blocks, filled, carve_limit, exact_limit);
-      if (exact_made) add_exact_time(result);
+      if (exact_made) add_stage_times(result.timings, exact_made->timings, base.timings);
       if (!passed) {
-      if (progress)
-        progress->warn("the blocks holding the feature(s) within the tolerance fail its measure with only their "
-                       "allowances: repairing the features instead");
-      if (!options.repair)
-        throw AlgorithmError("within the tolerance, the blocks holding the features no exact block can cover fail "
-                             "the tolerance's measure (--exact refuses to repair them): " +
-                             infeasible_message(infeasible, input, options.orient));
-      result.num_features_within_tolerance = 0;
-      pinned.clear();
-      result.canonical = solid;  // the stages left grow's refinement of it there
-      repair_stage(input, infeasible, options, result);
-      solid = result.canonical;
-      depths = depths_within(solid, options, result);
-      base = result;
-      filled.clear();
-      stages_within_tolerance(solid, depths, pinned, input, options, result, blocks, filled, carve_limit, 0);
+        if (progress)
+          progress->warn("the blocks holding the feature(s) within the tolerance fail its measure with only their "
+                         "allowances: repairing the features instead");
+        if (!options.repair)
+          throw AlgorithmError("within the tolerance, the blocks holding the features no exact block can cover fail "
+                               "the tolerance's measure (--exact refuses to repair them): " +
+                               infeasible_message(infeasible, input, options.orient));
+        result.num_features_within_tolerance = 0;
+        pinned.clear();
+        result.canonical = solid;  // the stages left grow's refinement of it there
+        repair_stage(input, infeasible, options, result);
+        solid = result.canonical;
+        depths = depths_within(solid, options, result);
+        base = result;
+        filled.clear();
+        stages_within_tolerance(solid, depths, pinned, input, options, result, blocks, filled, carve_limit, 0);
       }
     } catch (const NotFewerThanExact& e) {
-      // the exact blocks, made first (their time and the round's counted)
+      // the exact blocks, made first (the round's time counted too)
       if (progress)
         progress->info(std::string("within the tolerance: ") + e.what() + ", the exact decomposition has " +
                        std::to_string(exact_made->blocks.size()) + ": the exact blocks are kept, nothing measured");
-      DecomposeTimings t = exact_made->timings;
-      t.field += result.timings.field - base.timings.field;
-      t.grow += result.timings.grow - base.timings.grow;
-      t.cover += result.timings.cover - base.timings.cover;
-      t.resolve += result.timings.resolve - base.timings.resolve;
-      t.carve += result.timings.carve - base.timings.carve;
-      t.tolerance += result.timings.tolerance - base.timings.tolerance;
-      const std::size_t rounds = result.num_tolerance_rounds;
-      const std::size_t allowed = result.num_allowed_faces, floored = result.num_floored_faces;
-      result = std::move(*exact_made);
+      DecomposeResult exact = std::move(*exact_made);
       exact_made.reset();
-      result.timings = t;
-      result.num_tolerance_rounds = static_cast<int>(rounds);
-      result.num_allowed_faces = allowed;
-      result.num_floored_faces = floored;
+      add_stage_times(exact.timings, result.timings, base.timings);
+      exact.timings.tolerance += result.timings.tolerance - base.timings.tolerance;
+      exact.num_tolerance_rounds = result.num_tolerance_rounds;
+      exact.num_allowed_faces = result.num_allowed_faces;
+      exact.num_floored_faces = result.num_floored_faces;
+      result = std::move(exact);
       filled.clear();
       exact_kept = true;
     }
@@ -1248,7 +1248,7 @@ DecomposeResult decompose_once(const Mesh& input, const DecomposeOptions& option
   // cover): the decomposition under the pinned allowances only (none: the
   // exact one) is made too and kept when it has no more blocks (and, with
   // pinned allowances, its milled shapes pass the measure).
-  if (result.tolerance > 0 && !exact_kept && (!filled.empty() || exact_made)) {
+  if (result.tolerance > 0 && !exact_kept && !exact_failed && (!filled.empty() || exact_made)) {
     const bool made_first = exact_made.has_value();  // its time is already in result's
     DecomposeResult exact = made_first ? std::move(*exact_made) : base;
     const bool any_pinned = count_allowed_faces(pinned) > 0;
@@ -1282,11 +1282,7 @@ DecomposeResult decompose_once(const Mesh& input, const DecomposeOptions& option
     if (made_first) {
       t = a;
     } else {
-      t.field += a.field - b.field;
-      t.grow += a.grow - b.grow;
-      t.cover += a.cover - b.cover;
-      t.resolve += a.resolve - b.resolve;
-      t.carve += a.carve - b.carve;
+      add_stage_times(t, a, b);
       t.tolerance += a.tolerance - b.tolerance;
     }
     if (usable && exact.blocks.size() <= result.blocks.size()) {
