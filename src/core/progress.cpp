@@ -21,7 +21,7 @@ void ConsoleProgress::clear_bar_locked() {
 void ConsoleProgress::begin_stage(std::string_view name) {
   std::lock_guard<std::mutex> lock(mutex_);
   stage_ = std::string(name);
-  stage_start_ = std::chrono::steady_clock::now();
+  open_.emplace_back(stage_, std::chrono::steady_clock::now());
   last_draw_ = {};
   if (!quiet_) out_ << "[" << stage_ << "] ..." << std::endl;
 }
@@ -59,15 +59,19 @@ void ConsoleProgress::warn(std::string_view text) {
 void ConsoleProgress::end_stage() {
   std::lock_guard<std::mutex> lock(mutex_);
   clear_bar_locked();
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - stage_start_).count();
-  timings_.emplace_back(stage_, seconds);
+  if (open_.empty()) return;  // unbalanced: nothing open
+  // stages nest (the sliver stage runs merges within the tolerance): the
+  // innermost one ends, the one around it is current again
+  const auto [name, start] = open_.back();
+  open_.pop_back();
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  timings_.emplace_back(name, seconds);
   if (!quiet_) {
     std::ostringstream line;
-    line << "[" << stage_ << "] done in " << std::fixed << std::setprecision(2) << seconds << " s";
+    line << "[" << name << "] done in " << std::fixed << std::setprecision(2) << seconds << " s";
     out_ << line.str() << std::endl;
   }
-  stage_.clear();
+  stage_ = open_.empty() ? std::string() : open_.back().first;
 }
 
 std::vector<std::pair<std::string, double>> ConsoleProgress::timings() const {

@@ -80,8 +80,8 @@ class ConsoleProgress final : public Progress {
   bool quiet_;
   bool terminal_;
   mutable std::mutex mutex_;
-  std::string stage_;
-  std::chrono::steady_clock::time_point stage_start_;
+  std::string stage_;  // the innermost open stage ("" when none)
+  std::vector<std::pair<std::string, std::chrono::steady_clock::time_point>> open_;  // open stages, outermost first
   std::chrono::steady_clock::time_point last_draw_;
   bool bar_visible_ = false;
   std::vector<std::pair<std::string, double>> timings_;
