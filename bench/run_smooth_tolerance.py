@@ -23,10 +23,8 @@ from the test suite.
 import argparse
 import json
 import os
-import sys
 
-from bench_common import add_common_arguments, peak_rss_mb
-from run_sweep import timed_run
+from bench_common import add_common_arguments, add_run_list_arguments, logged_run, peak_rss_mb, selected
 
 # The authors' own Taubin factors (their tool's defaults)
 FACTORS = ["--smooth-lambda", "0.89", "--smooth-mu", "-0.9"]
@@ -44,17 +42,11 @@ RUNS = [
 THESIS = {"Max Planck": (8, 1.08e-2), "Bimba": (16, 1.01e-2), "Kitten": (25, 1.36e-2)}
 
 
-def run(args, cmd):
-    """run_sweep.timed_run (exit code or None on timeout, stdout, stderr, wall s); None with --dry-run."""
-    print("$ " + " ".join(cmd), file=sys.stderr)
-    return None if args.dry_run else timed_run(cmd, args.timeout)
-
-
 def validate_json(args, model, outdir, against):
     cmd = [args.subfab, "validate", model, outdir, "--json", "--quiet", "--threads", str(args.threads)]
     if against:
         cmd.append("--against-input")
-    done = run(args, cmd)
+    done = logged_run(args, cmd)
     if done is None:
         return None
     _, out, err, seconds = done
@@ -74,7 +66,7 @@ def one(args, name, file, height, cap, passes, tolerance):
            *FACTORS, "--tolerance", "%g" % tolerance, "--threads", str(args.threads), "--no-view", "--quiet"]
     if height is not None:
         cmd += ["--max-height", "%g" % height]
-    done = run(args, cmd)
+    done = logged_run(args, cmd)
     row = {"model": name, "height": height, "cap": cap, "passes": passes, "tolerance": tolerance,
            "decompose_s": done[3] if done else 0.0}
     if done is None:
@@ -127,16 +119,13 @@ def table(rows):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     add_common_arguments(ap, "smooth_tolerance", with_csv=False)
-    ap.add_argument("--only", nargs="*", help="run only these models (name or file stem; case-insensitive)")
     ap.add_argument("--against-input", action="store_true", help="also validate against the input itself")
-    ap.add_argument("--dry-run", action="store_true", help="print the commands only")
-    ap.add_argument("--timeout", type=float, default=3600.0, help="per command, seconds")
+    add_run_list_arguments(ap)
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
-    wanted = {n.lower() for n in args.only} if args.only else None
     rows = []
     for name, file, height, cap, passes, tolerance in RUNS:
-        if wanted and name.lower() not in wanted and os.path.splitext(file)[0].lower() not in wanted:
+        if not selected(args, name, file):
             continue
         rows.append(one(args, name, file, height, cap, passes, tolerance))
     with open(os.path.join(args.out, "smooth_tolerance.json"), "w") as f:

@@ -32,10 +32,9 @@ import os
 import re
 import subprocess
 import sys
-import time
 
 import bench_common
-from bench_common import ROOT, add_common_arguments, table_4_1_rows
+from bench_common import ROOT, add_common_arguments, table_4_1_rows, timed_run
 
 # The steepest face of the thesis's own published blocks per run, degrees past
 # vertical (../shared/notes/reference-implementation.md, "What its published
@@ -103,17 +102,6 @@ def collect_runs(args):
 def stage_times(stderr_text):
     """'[stage] done in X s' lines of ConsoleProgress -> {stage: seconds}."""
     return {m.group(1): float(m.group(2)) for m in re.finditer(r"^\[([^\]]+)\] done in ([0-9.]+) s", stderr_text, re.M)}
-
-
-def timed_run(cmd, timeout):
-    """(exit code or None on timeout, stdout, stderr with /usr/bin/time -v's report, wall seconds)."""
-    start = time.time()
-    try:
-        p = subprocess.run(["/usr/bin/time", "-v"] + cmd, capture_output=True, text=True, timeout=timeout)
-        rc, out, err = p.returncode, p.stdout, p.stderr
-    except subprocess.TimeoutExpired:
-        rc, out, err = None, "", f"timeout after {timeout} s"
-    return rc, out, err, round(time.time() - start, 2)
 
 
 def overhang_of(args, run):

@@ -23,10 +23,8 @@ Long (tens of minutes in all): never run from the test suite.
 import argparse
 import json
 import os
-import sys
 
-from bench_common import add_common_arguments, peak_rss_mb
-from run_sweep import timed_run
+from bench_common import add_common_arguments, add_run_list_arguments, logged_run, peak_rss_mb, selected
 
 # name, file, Table 4.1 height (None: no limit), tolerance (x diagonal), thesis blocks, thesis total s
 RUNS = [
@@ -43,12 +41,6 @@ RUNS = [
 ]
 
 
-def run(args, cmd):
-    """run_sweep.timed_run (exit code or None on timeout, stdout, stderr, wall s); None with --dry-run."""
-    print("$ " + " ".join(cmd), file=sys.stderr, flush=True)
-    return None if args.dry_run else timed_run(cmd, args.timeout)
-
-
 def error_line(err, rc):
     errors = [line for line in err.splitlines() if line.startswith("error:")]
     return errors[-1] if errors else "timeout" if rc is None else "exit %d" % rc
@@ -63,7 +55,7 @@ def one(args, name, file, height, tolerance):
     if height is not None:
         cmd += ["--max-height", "%g" % height]
     row = {"model": name, "height": height, "tolerance": tolerance}
-    done = run(args, cmd)
+    done = logged_run(args, cmd)
     if done is None:
         return row
     rc, _, err, seconds = done
@@ -76,7 +68,7 @@ def one(args, name, file, height, tolerance):
     row["blocks"] = len(doc["blocks"])
     row["bound"] = doc["summary"].get("deviation_bound_fraction")
     row["volume_ratio"] = doc["summary"].get("material_volume_fraction")
-    done = run(args, [args.subfab, "validate", model, outdir, "--json", "--quiet", "--threads", str(args.threads)])
+    done = logged_run(args, [args.subfab, "validate", model, outdir, "--json", "--quiet", "--threads", str(args.threads)])
     if done is None:
         return row
     rc, out, err, seconds = done
@@ -120,15 +112,12 @@ def table(rows):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     add_common_arguments(ap, "thesis_tolerances", with_csv=False)
-    ap.add_argument("--only", nargs="*", help="run only these (model name or file stem; case-insensitive)")
-    ap.add_argument("--dry-run", action="store_true", help="print the commands only")
-    ap.add_argument("--timeout", type=float, default=3600.0, help="per command, seconds")
+    add_run_list_arguments(ap)
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
-    wanted = {n.lower() for n in args.only} if args.only else None
     rows = []
     for name, file, height, tolerance, thesis_blocks, thesis_s in RUNS:
-        if wanted and name.lower() not in wanted and os.path.splitext(file)[0].lower() not in wanted:
+        if not selected(args, name, file):
             continue
         row = one(args, name, file, height, tolerance)
         row.update(thesis_blocks=thesis_blocks, thesis_s=thesis_s)
