@@ -268,6 +268,9 @@ int run_decompose(const DecomposeArgs& args) {
         << " block(s) stick out of the input (undercuts filled), measured deviation bound "
         << result.deviation_bound << " (" << result.deviation_bound / diagonal
         << " x diagonal); every block is an exact height field (subfab validate checks the deviation)";
+    if (result.tolerance_overhang_deg > 0)
+      msg << "; the blocks of the overhang ladder at " << result.tolerance_overhang_deg
+          << " deg (every face leaning at most that far past vertical allowed, then milled and measured)";
     msg << "; slivers (thinner than " << result.sliver_thickness / diagonal
         << " x diagonal where the model is thicker): " << result.num_slivers_merged << " merged, "
         << result.num_slivers_dropped << " dropped, " << result.num_slivers_recarved

@@ -2,6 +2,7 @@
 #include "subfab/decompose/decompose.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <array>
 #include <chrono>
 #include <functional>
@@ -81,6 +82,13 @@ void check_options(const DecomposeOptions& o) {
     throw InvalidArgumentError("the fallback's minimum carve gain must lie in [0, 1)");
   if (!(o.sliver_thickness >= 0) || !std::isfinite(o.sliver_thickness))
     throw InvalidArgumentError("the sliver thickness must be a fraction of the bounding-box diagonal >= 0");
+  for (std::size_t i = 0; i < o.tolerance_overhang_ladder_deg.size(); ++i) {
+    const double deg = o.tolerance_overhang_ladder_deg[i];
+    if (!(deg > 0 && deg <= 45) || (i > 0 && !(deg > o.tolerance_overhang_ladder_deg[i - 1])))
+      throw InvalidArgumentError("tolerance_overhang_ladder_deg must be increasing angles in (0, 45] degrees");
+  }
+  if (!(o.tolerance_ladder_slack >= 0 && o.tolerance_ladder_slack <= 1))
+    throw InvalidArgumentError("tolerance_ladder_slack must lie in [0, 1]");
   overhang_sine(o.max_overhang_deg);  // throws on a value outside [0, 45] degrees
 }
 
@@ -1068,6 +1076,108 @@ bool stages_within_tolerance(const Mesh& solid, const std::vector<std::array<dou
   }
 }
 
+//! Within a tolerance (issue 17): the overhang ladder. The depth allowances
+//! (tolerance_allowances()) bound a face's undercut by the free length under
+//! it, which can be far deeper than the fill of the block that holds it
+//! (cube spike at 9.8e-4: the faces leaning 8 deg are allowed only above
+//! base floors, 5 blocks; under a uniform 10 deg allowance 2 blocks, milled
+//! shapes within 6.7e-4). When result's blocks deviate at most
+//! options.tolerance_ladder_slack x T, the stages run again under each angle
+//! of options.tolerance_overhang_ladder_deg in turn
+//! (uniform_overhang_allowances(), the pinned allowances kept, on `solid`
+//! from `base`); a carve with fewer blocks than the best so far is milled
+//! and measured (mill_within_tolerance(), exact) and, when every milled
+//! shape passes, merged (merge_blocks()) and kept if it still has fewer
+//! blocks. The ladder ends at the first carve that fails the measure (a
+//! larger angle lets the same faces lean farther), at one that passes with
+//! a deviation above the slack (no room left), at one with at least
+//! max(B + 2, (1 + tolerance_exact_margin) B) blocks, B the best so far (egea
+//! at 8.3e-2: 60 blocks at 5 deg against 6; the covers of the larger angles
+//! took minutes), when a carve fails, or at one block. Sets result (its timings include the ladder's) and `filled`.
+void overhang_ladder_stage(const Mesh& solid, const std::vector<std::uint8_t>& pinned, const Mesh& input,
+                           const DecomposeOptions& options, const DecomposeResult& base, DecomposeResult& result,
+                           std::vector<char>& filled) {
+  Progress* progress = options.progress;
+  StageScope stage(progress, "overhang ladder");
+  const auto g = [](double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", v);
+    return std::string(text);
+  };
+  DecomposeTimings timings = result.timings;
+  const auto add_times = [&](const DecomposeResult& cand) {
+    add_stage_times(timings, cand.timings, base.timings);
+    timings.tolerance += cand.timings.tolerance - base.timings.tolerance;
+  };
+  for (const double deg : options.tolerance_overhang_ladder_deg) {
+    if (result.blocks.size() <= 1) break;
+    OverhangAllowances allowed = uniform_overhang_allowances(solid, deg);
+    for (std::size_t f = 0; f < pinned.size() && f < allowed.bits.size(); ++f)
+      allowed.bits[f] = static_cast<std::uint8_t>(allowed.bits[f] | pinned[f]);
+    if (count_allowed_faces(allowed.bits) == 0) continue;
+    const std::string at = "overhang ladder at " + g(deg) + " deg: ";
+    DecomposeResult cand = base;
+    try {
+      std::vector<Block> carved = carve_stages(solid, &allowed, input, options, cand);
+      if (carved.size() >= result.blocks.size()) {
+        // far more blocks than the best: the larger angles are not expected
+        // to cut that many (the rule of tolerance_exact_margin)
+        const auto best = static_cast<double>(result.blocks.size());
+        const bool far = options.tolerance_exact_margin >= 0 &&
+                         static_cast<double>(carved.size()) >=
+                             std::max(best + 2, std::ceil((1 + options.tolerance_exact_margin) * best));
+        if (progress)
+          progress->info(at + std::to_string(carved.size()) + " blocks carved, not fewer than " +
+                         std::to_string(result.blocks.size()) +
+                         (far ? ": far more, the ladder ends" : ": not measured"));
+        add_times(cand);
+        if (far) break;
+        continue;
+      }
+      MillToleranceResult milled = mill_stage(solid, std::move(carved), options, cand);
+      if (milled.num_failed() > 0) {
+        if (progress)
+          progress->info(at + std::to_string(milled.num_failed()) + " of " + std::to_string(milled.blocks.size()) +
+                         " milled shapes beyond the tolerance: the ladder ends");
+        add_times(cand);
+        break;
+      }
+      std::vector<char> cand_filled = std::move(milled.filled);
+      cand.deviation_bound = milled.max_deviation;
+      const double deviation = milled.max_deviation;
+      merge_stage(std::move(milled.blocks), cand_filled, options, cand);
+      add_times(cand);
+      if (progress)
+        progress->info(at + std::to_string(cand.blocks.size()) + " blocks within the tolerance (deviation bound " +
+                       g(cand.deviation_bound / std::max(bounding_box(solid).diagonal(), 1e-300)) +
+                       " x diagonal)" +
+                       (cand.blocks.size() < result.blocks.size()
+                            ? ", kept instead of " + std::to_string(result.blocks.size())
+                            : ", not fewer than " + std::to_string(result.blocks.size())));
+      if (cand.blocks.size() < result.blocks.size()) {
+        cand.num_allowed_faces = result.num_allowed_faces;
+        cand.num_floored_faces = result.num_floored_faces;
+        cand.num_tolerance_rounds = result.num_tolerance_rounds + 1;
+        cand.num_features_within_tolerance = result.num_features_within_tolerance;
+        cand.tolerance_overhang_deg = deg;
+        result = std::move(cand);
+        filled = std::move(cand_filled);
+      } else {
+        ++result.num_tolerance_rounds;
+      }
+      if (deviation > options.tolerance_ladder_slack * result.tolerance) {
+        if (progress) progress->info(at + "its blocks leave the tolerance no room for a larger angle: the ladder ends");
+        break;
+      }
+    } catch (const AlgorithmError& e) {
+      if (progress) progress->info(at + "the stages failed (" + e.what() + "): the ladder ends");
+      add_times(cand);
+      break;
+    }
+  }
+  result.timings = timings;
+}
+
 //! decompose() at options' tolerance, no fallback. At tolerance 0 with a
 //! fallback tolerance (the command's default) and slivers left,
 //! `*slivers_within` receives the same blocks with the sliver stage run
@@ -1295,6 +1405,11 @@ DecomposeResult decompose_once(const Mesh& input, const DecomposeOptions& option
       result.timings = t;
     }
   }
+  // The overhang ladder (issue 17): uniform angles where the blocks leave
+  // the tolerance room.
+  if (result.tolerance > 0 && options.max_overhang_deg == 0 && !options.tolerance_overhang_ladder_deg.empty() &&
+      result.blocks.size() > 1 && result.deviation_bound <= options.tolerance_ladder_slack * result.tolerance)
+    overhang_ladder_stage(solid, pinned, input, options, base, result, filled);
   // A block made by a merge below must survive the export: rounded to the
   // input frame (finalize_blocks()) and written in single precision (its
   // machine STL).
@@ -1447,6 +1562,7 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
   // the exact blocks are known to fail here (repair given up, or slivers):
   // a round is never given up for carving more blocks than they have
   within.tolerance_exact_margin = -1;
+  within.tolerance_overhang_ladder_deg.clear();  // the fallback pays for no extra carves
   const std::string instead = "Decomposing within a tolerance of " + std::to_string(options.fallback_tolerance_fraction) +
                               " x the bounding-box diagonal instead";
   DecomposeResult exact;

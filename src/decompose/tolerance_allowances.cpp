@@ -10,6 +10,7 @@
 #include "geometry/undercut_depth.h"
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
+#include "subfab/geometry/axis.h"
 
 namespace subfab {
 
@@ -101,6 +102,20 @@ OverhangAllowances allowances_with_floors(const Mesh& mesh, const std::vector<st
       a.bits[f] = static_cast<std::uint8_t>(a.bits[f] | bit);
     }
   }
+  return a;
+}
+
+OverhangAllowances uniform_overhang_allowances(const Mesh& mesh, double max_overhang_deg) {
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  OverhangAllowances a;
+  a.bits.assign(mesh.num_faces(), 0);
+  a.floors.assign(mesh.num_faces(), {-inf, -inf, -inf});
+  if (!(max_overhang_deg > 0)) return a;
+  const auto exact = detail::exact_normal_signs(mesh);
+  const auto facing = detail::facing_signs(mesh, overhang_sine(max_overhang_deg));
+  for (std::size_t f = 0; f < mesh.num_faces(); ++f)
+    for (std::size_t k = 0; k < 3; ++k)
+      if (exact[f][k] != 0 && facing[f][k] == 0) a.bits[f] = static_cast<std::uint8_t>(a.bits[f] | (1u << k));
   return a;
 }
 

@@ -380,6 +380,7 @@ TEST(ToleranceAllowances, ARoundCarvingFarMoreBlocksThanTheExactOnesIsNotMeasure
   DecomposeOptions o;
   o.tolerance_fraction = 3.8e-4;
   o.max_height_fraction = 0.225;
+  o.tolerance_overhang_ladder_deg.clear();  // the exact blocks as the round left them (the ladder: below)
   const DecomposeResult given_up = decompose(moai, o);
   EXPECT_EQ(given_up.num_tolerance_rounds, 0);
   DecomposeOptions measured = o;
@@ -395,6 +396,87 @@ TEST(ToleranceAllowances, ARoundCarvingFarMoreBlocksThanTheExactOnesIsNotMeasure
   DecomposeOptions bad = o;
   bad.tolerance_exact_margin = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW(decompose(moai, bad), InvalidArgumentError);
+}
+
+// A 10 x 10 x 10 box with a stem on top, 2 x 2 at z = 10 and flaring to
+// 2 + 2w at z = 13 (w = 3 tan 8 deg): the stem's four sides lean 8 deg past
+// vertical for +z, over a drop of 3 to the box's top.
+Mesh box_with_flared_stem() {
+  const double w = 3 * std::tan(8.0 * std::acos(-1.0) / 180.0);
+  Mesh m;
+  m.vertices = {{0, 0, 0},          {10, 0, 0},         {10, 10, 0},        {0, 10, 0},         {0, 0, 10},
+                {10, 0, 10},        {10, 10, 10},       {0, 10, 10},        {4, 4, 10},         {6, 4, 10},
+                {6, 6, 10},         {4, 6, 10},         {4 - w, 4 - w, 13}, {6 + w, 4 - w, 13}, {6 + w, 6 + w, 13},
+                {4 - w, 6 + w, 13}};
+  m.faces = {{0, 2, 1},   {0, 3, 2},   {0, 1, 5},   {0, 5, 4},   {1, 2, 6},    {1, 6, 5},    {2, 3, 7},
+             {2, 7, 6},   {3, 0, 4},   {3, 4, 7},   {4, 5, 9},   {4, 9, 8},    {5, 6, 10},   {5, 10, 9},
+             {6, 7, 11},  {6, 11, 10}, {7, 4, 8},   {7, 8, 11},  {8, 9, 13},   {8, 13, 12},  {9, 10, 14},
+             {9, 14, 13}, {10, 11, 15}, {10, 15, 14}, {11, 8, 12}, {11, 12, 15}, {12, 13, 14}, {12, 14, 15}};
+  return m;
+}
+
+TEST(ToleranceAllowances, AUniformAngleAllowsTheFacesLeaningAtMostThatFarOnTheirAxisOnly) {
+  const Mesh m = box_with_flared_stem();
+  ASSERT_TRUE(check_closed_solid(m).ok());
+  const OverhangAllowances at5 = uniform_overhang_allowances(m, 5.0);
+  const OverhangAllowances at10 = uniform_overhang_allowances(m, 10.0);
+  const OverhangAllowances at45 = uniform_overhang_allowances(m, 45.0);
+  EXPECT_EQ(count_allowed_faces(at5.bits), 0u);
+  for (std::size_t f = 0; f < m.num_faces(); ++f) {
+    const bool stem_side = f >= 18 && f < 26;
+    EXPECT_EQ(at10.bits[f], stem_side ? 4u : 0u) << "face " << f;  // z only: the sides face +x/-x, +y/-y
+    EXPECT_EQ(at45.bits[f], at10.bits[f]) << "face " << f;  // the box's bottom (n.z = -1) leans 90 deg
+    for (double floor : at10.floors[f]) EXPECT_EQ(floor, -std::numeric_limits<double>::infinity());
+  }
+  EXPECT_EQ(count_allowed_faces(uniform_overhang_allowances(m, 0.0).bits), 0u);
+}
+
+// The overhang ladder (issue 17): with the depth allowances made useless
+// (depth fraction 1e-3, no floors) the round leaves the exact blocks; at 10
+// deg (5 deg allows no face) the box and its stem are one +z block whose
+// milled shape fills the wedges under the stem's sides (about 0.37 from the
+// input). Kept within T = 1; at T = 0.3 the measure refutes it (and the
+// merge of the exact blocks) and the exact blocks stay.
+TEST(ToleranceAllowances, TheOverhangLadderKeepsAUniformAngleWhoseMilledShapesPass) {
+  const Mesh m = box_with_flared_stem();
+  DecomposeOptions o;
+  o.orient = false;
+  const std::size_t exact = decompose(m, o).blocks.size();
+  EXPECT_GE(exact, 2u);
+  o.tolerance_fraction = 1.0;
+  o.tolerance_abs = 1.0;
+  o.tolerance_depth_fractions = {1e-3};
+  o.tolerance_floor_scale = 0.0;
+  // Without the ladder only the merge of the exact blocks (stage 8) makes
+  // the one +z block; with it the ladder's carve is that block already.
+  DecomposeOptions no_ladder = o;
+  no_ladder.tolerance_overhang_ladder_deg.clear();
+  const DecomposeResult merged = decompose(m, no_ladder);
+  EXPECT_EQ(merged.tolerance_overhang_deg, 0.0);
+  EXPECT_GE(merged.num_tolerance_merges, 1u);
+  const DecomposeResult laddered = decompose(m, o);
+  ASSERT_EQ(laddered.blocks.size(), 1u);
+  EXPECT_EQ(laddered.tolerance_overhang_deg, 10.0);
+  EXPECT_EQ(laddered.num_tolerance_merges, 0u);
+  EXPECT_EQ(laddered.blocks[0].axis, Axis::PosZ);
+  EXPECT_GT(laddered.deviation_bound, 0.2);
+  EXPECT_LE(laddered.deviation_bound, 1.0);
+  EXPECT_TRUE(is_height_field(laddered.blocks[0].mesh, axis_direction(laddered.blocks[0].axis)));
+  ValidationOptions vo;
+  vo.tolerance = laddered.tolerance;
+  const ValidationReport report =
+      validate_decomposition(m, test::to_validation(make_exported_blocks(m, laddered)), vo);
+  for (const CheckReport& c : report.checks)
+    EXPECT_TRUE(c.passed) << c.name << ": " << (c.failures.empty() ? c.summary : c.failures[0]);
+  o.tolerance_abs = 0.3;
+  const DecomposeResult refuted = decompose(m, o);
+  EXPECT_EQ(refuted.blocks.size(), exact);
+  EXPECT_EQ(refuted.tolerance_overhang_deg, 0.0);
+  DecomposeOptions bad = o;
+  bad.tolerance_overhang_ladder_deg = {10, 5};
+  EXPECT_THROW(decompose(m, bad), InvalidArgumentError);
+  bad.tolerance_overhang_ladder_deg = {50};
+  EXPECT_THROW(decompose(m, bad), InvalidArgumentError);
 }
 
 }  // namespace

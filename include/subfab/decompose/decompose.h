@@ -103,6 +103,22 @@ struct DecomposeOptions {
                                     // never more blocks than per face on the models measured, often far fewer
                                     // (airplane at 1.8e-3 9 vs 18, cube spike at 9.8e-4 and height 0.4 5 vs 6;
                                     // bench/RESULTS.md); 0.5 and 1 fail the measure on curved undersides
+  std::vector<double> tolerance_overhang_ladder_deg = {5, 10, 15, 20, 30, 45};  // within a tolerance, when the
+                                    // blocks deviate at most tolerance_ladder_slack x T: decompositions where every
+                                    // face leaning at most this many degrees past vertical may lean
+                                    // (uniform_overhang_allowances()), each angle in turn; one whose carve has fewer
+                                    // blocks is milled, measured and kept when every milled shape passes and, after
+                                    // the exact merges, it still has fewer; the ladder ends at the first that fails
+                                    // the measure, passes with a deviation above the slack, or carves at least
+                                    // max(B + 2, (1 + tolerance_exact_margin) B) blocks, B the best so far (not with
+                                    // a margin < 0) (increasing, each in (0, 45]; empty: no ladder). The depth
+                                    // allowances bound a face's undercut by the free length under it, far deeper
+                                    // than the fill a block has when its base lies close under the face (cube spike
+                                    // at 9.8e-4: 5 blocks, with the ladder 2 at 10 deg, as the thesis's 2)
+  double tolerance_ladder_slack = 0.5;  // the ladder runs (and goes on) while the blocks' measured deviation is at
+                                    // most this x T
+                                    // ([0, 1]): where it is already near T (the statues), a larger allowance is not
+                                    // expected to pass, and the ladder's carves would only cost time
   Progress* progress = nullptr; // stage progress (nullptr = silent)
 };
 
@@ -147,6 +163,7 @@ struct DecomposeResult {
   std::size_t num_floored_faces = 0;     // faces first allowed to lean only in boxes whose base lies close enough
                                          // under them (allowances_with_floors())
   int num_tolerance_rounds = 0;          // decompositions under allowances that were milled and measured
+  double tolerance_overhang_deg = 0.0;   // the overhang ladder's angle whose blocks were kept (degrees; 0: none)
   std::size_t num_blocks_decomposed_in_place = 0;  // blocks of the last round still beyond the tolerance whose
                                          // carved pieces were decomposed again on their own (tolerance_local_exact)
   double sliver_thickness = 0.0;         // the sliver threshold used (model units; remove_slivers.h)

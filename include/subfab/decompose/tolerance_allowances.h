@@ -91,6 +91,15 @@ OverhangAllowances allowances_with_floors(const Mesh& mesh, const std::vector<st
                                           const std::vector<std::array<std::uint8_t, 3>>& level,
                                           const std::vector<double>& fractions, double tolerance, double floor_scale);
 
+//! Allowances of a uniform overhang angle (decompose()'s overhang ladder
+//! within a tolerance, issue 17): bit k of face f set when the face faces
+//! away from the axis direction d along e_k (exact sign of n_k) and leans at
+//! most `max_overhang_deg` past vertical (unit n.d >= -overhang_sine(deg)),
+//! in every box (floors -inf). What --max-overhang lets lean, as a proposal:
+//! the blocks are milled and measured like any other allowance's.
+//! \param max_overhang_deg in [0, 45]; 0 allows nothing
+OverhangAllowances uniform_overhang_allowances(const Mesh& mesh, double max_overhang_deg);
+
 //! Number of faces allowed to lean only above base floors: every axis with
 //! an allowance has a finite floor (a face allowed in every box along some
 //! axis is not counted, whatever its other axes' floors).

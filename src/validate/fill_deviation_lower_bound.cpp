@@ -1,0 +1,102 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "subfab/validate/fill_deviation_lower_bound.h"
+
+#include <CGAL/squared_distance_3.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <mutex>
+
+#include "geometry/solid_index.h"
+#include "geometry/triangle_tree.h"
+#include "subfab/core/error.h"
+#include "subfab/core/parallel.h"
+
+namespace subfab {
+namespace {
+
+bool box_contains(const BoundingBox& b, const Vec3& p, double slack) {
+  return (p.array() >= b.min.array() - slack).all() && (p.array() <= b.max.array() + slack).all();
+}
+
+bool boxes_meet(const BoundingBox& a, const BoundingBox& b) {
+  return (a.min.array() <= b.max.array()).all() && (b.min.array() <= a.max.array()).all();
+}
+
+//! A filled block's exact inside test and surface distance, built on first use.
+struct LazySolid {
+  std::once_flag once;
+  std::unique_ptr<detail::SolidIndex> index;
+  std::unique_ptr<detail::TriangleTree> surface;
+  void build(const Mesh& m) {
+    std::call_once(once, [&] {
+      index = std::make_unique<detail::SolidIndex>(m);
+      surface = std::make_unique<detail::TriangleTree>(m);
+      surface->accelerate_distance_queries();
+    });
+  }
+};
+
+}  // namespace
+
+std::vector<double> fill_deviation_lower_bounds(const Mesh& solid, const std::vector<const Mesh*>& filled,
+                                                const std::vector<std::optional<std::vector<BoundingBox>>>& fills,
+                                                double stop, const std::vector<char>& which) {
+  const std::size_t n = filled.size();
+  if (fills.size() != n || (!which.empty() && which.size() != n))
+    throw InvalidArgumentError("fill_deviation_lower_bounds: one fill and one flag per filled block expected");
+  std::vector<double> bound(n, 0.0);
+  if (n == 0 || solid.faces.empty()) return bound;
+  const detail::SolidIndex inside(solid);
+  detail::TriangleTree surface(solid);
+  surface.accelerate_distance_queries();  // before the concurrent queries
+  std::vector<BoundingBox> boxes(n);
+  double scale = 0.0;
+  for (std::size_t k = 0; k < n; ++k) {
+    boxes[k] = bounding_box(*filled[k]);
+    if (!boxes[k].is_empty()) scale = std::max({scale, boxes[k].min.cwiseAbs().maxCoeff(), boxes[k].max.cwiseAbs().maxCoeff()});
+  }
+  const double contact = 1e-7 * std::max(scale, 1e-300);  // on another fill's surface
+  std::vector<LazySolid> others(n);
+  constexpr int kSteps = 4;  // barycentric grid of step 1/4: 15 points per face
+  parallel_for(0, n, [&](std::size_t k) {
+    if (!which.empty() && !which[k]) return;
+    const Mesh& m = *filled[k];
+    double best = 0.0;
+    for (std::size_t f = 0; f < m.faces.size() && !(best > stop); ++f) {
+      const Vec3& a = m.vertices[static_cast<std::size_t>(m.faces[f][0])];
+      const Vec3& b = m.vertices[static_cast<std::size_t>(m.faces[f][1])];
+      const Vec3& c = m.vertices[static_cast<std::size_t>(m.faces[f][2])];
+      if (fills[k]) {
+        BoundingBox fb;
+        fb.extend(a);
+        fb.extend(b);
+        fb.extend(c);
+        if (std::none_of(fills[k]->begin(), fills[k]->end(), [&](const BoundingBox& x) { return boxes_meet(fb, x); }))
+          continue;
+      }
+      for (int i = 0; i <= kSteps && !(best > stop); ++i)
+        for (int j = 0; i + j <= kSteps && !(best > stop); ++j) {
+          const double u = static_cast<double>(i) / kSteps, v = static_cast<double>(j) / kSteps;
+          const Vec3 p = (1 - u - v) * a + u * b + v * c;
+          const auto q = detail::TriangleTree::point(p);
+          const double d = std::sqrt(CGAL::squared_distance(q, surface.tree().closest_point(q)));
+          if (!(d > best) || inside.is_inside(p)) continue;
+          bool in_other = false;
+          for (std::size_t j2 = 0; j2 < n && !in_other; ++j2) {
+            if (j2 == k || !box_contains(boxes[j2], p, contact)) continue;
+            others[j2].build(*filled[j2]);
+            const double e = std::sqrt(
+                CGAL::squared_distance(q, others[j2].surface->tree().closest_point(q)));
+            in_other = e <= contact || others[j2].index->is_inside(p);
+          }
+          if (!in_other) best = d;
+        }
+    }
+    bound[k] = best;
+  });
+  return bound;
+}
+
+}  // namespace subfab
