@@ -11,6 +11,7 @@
 #include "subfab/validate/measure_fill_deviation.h"
 
 #include <algorithm>
+#include <chrono>
 #include <atomic>
 #include <cmath>
 #include <cstdio>
@@ -612,6 +613,7 @@ ValidationReport validate_decomposition(const Mesh& input, const std::vector<Val
     // A frame block equal to its exported block, in a frame equal to the
     // input's (a model decompose did not turn): check 4's part is its part.
     const bool same_input = frame && frame->input.vertices == input.vertices;
+    const auto parts_start = std::chrono::steady_clock::now();
     parallel_for(0, filled.size(), [&](std::size_t k) {
       try {
         const std::size_t i = filled[k];
@@ -627,6 +629,15 @@ ValidationReport validate_decomposition(const Mesh& input, const std::vector<Val
         errors[k] = e.what();
       }
     });
+    if (progress) {
+      std::size_t regions = 0;
+      for (const auto& c : cover) regions += c ? c->size() : 1;
+      progress->info("measuring the deviation in " + std::to_string(regions) + " region(s) of " +
+                     std::to_string(filled.size()) + " block(s) sticking out (their parts outside the input" +
+                     (frame && !same_input ? " made again in decompose's frame" : std::string()) + ": " +
+                     fmt("%.2f", std::chrono::duration<double>(std::chrono::steady_clock::now() - parts_start).count()) +
+                     " s)");
+    }
     // each block near a box only where it sticks out near it (its part
     // elsewhere in the region lies in the input: the same model)
     FillCoverMap others_cover;
