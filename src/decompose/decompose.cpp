@@ -515,13 +515,14 @@ std::vector<std::array<double, 3>> depths_within(const Mesh& solid, const Decomp
 //! (mill_within_tolerance()), timed as "tolerance".
 MillToleranceResult mill_stage(const Mesh& solid, std::vector<Block> blocks, const DecomposeOptions& options,
                                DecomposeResult& result, const std::vector<char>* measure = nullptr,
-                               const std::vector<double>* known_deviation = nullptr) {
+                               const std::vector<double>* known_deviation = nullptr, bool stop_at_first_failure = false) {
   StageScope stage(options.progress, "mill");
   const auto t = Clock::now();
   MillToleranceOptions mo;
   mo.tolerance = result.tolerance;
   mo.measure = measure;
   mo.known_deviation = known_deviation;
+  mo.stop_at_first_failure = stop_at_first_failure;
   mo.progress = options.progress;
   MillToleranceResult milled = mill_within_tolerance(solid, std::move(blocks), mo);
   result.timings.tolerance += seconds_since(t);
@@ -1089,7 +1090,11 @@ bool stages_within_tolerance(const Mesh& solid, const std::vector<std::array<dou
 //! and measured (mill_within_tolerance(), exact) and, when every milled
 //! shape passes, merged (merge_blocks()) and kept if it still has fewer
 //! blocks. The ladder ends at the first carve that fails the measure (a
-//! larger angle lets the same faces lean farther), at one that passes with
+//! larger angle lets the same faces lean farther; when the sampled lower
+//! bound fails a block, nothing is measured exactly; else the failing
+//! blocks' carved pieces are decomposed again in place,
+//! replace_failed_blocks(), and the result kept if it has fewer blocks), at
+//! one that passes with
 //! a deviation above the slack (no room left), at one with at least
 //! max(B + 2, (1 + tolerance_exact_margin) B) blocks, B the best so far (egea
 //! at 8.3e-2: 60 blocks at 5 deg against 6; the covers of the larger angles
@@ -1134,18 +1139,35 @@ void overhang_ladder_stage(const Mesh& solid, const std::vector<std::uint8_t>& p
         if (far) break;
         continue;
       }
-      MillToleranceResult milled = mill_stage(solid, std::move(carved), options, cand);
-      if (milled.num_failed() > 0) {
+      const std::vector<Block> pieces = carved;  // for replace_failed_blocks()
+      MillToleranceResult milled = mill_stage(solid, std::move(carved), options, cand, nullptr, nullptr, true);
+      std::vector<Block> cand_blocks;
+      std::vector<char> cand_filled;
+      const bool failed = milled.num_failed() > 0;
+      if (milled.stopped) {
         if (progress)
-          progress->info(at + std::to_string(milled.num_failed()) + " of " + std::to_string(milled.blocks.size()) +
-                         " milled shapes beyond the tolerance: the ladder ends");
+          progress->info(at + "a sampled point of a milled shape lies beyond the tolerance: the ladder ends");
         add_times(cand);
         break;
       }
-      std::vector<char> cand_filled = std::move(milled.filled);
-      cand.deviation_bound = milled.max_deviation;
-      const double deviation = milled.max_deviation;
-      merge_stage(std::move(milled.blocks), cand_filled, options, cand);
+      if (failed) {
+        // the failing blocks' pieces decomposed again in place (as after the
+        // last round); the angle still ends the ladder
+        if (progress)
+          progress->info(at + std::to_string(milled.num_failed()) + " of " + std::to_string(milled.blocks.size()) +
+                         " milled shapes beyond the tolerance: decomposing their carved pieces again, each on its "
+                         "own; the ladder ends here");
+        if (!replace_failed_blocks(solid, pieces, milled, input, options, cand, cand_blocks, cand_filled)) {
+          add_times(cand);
+          break;
+        }
+      } else {
+        cand_blocks = std::move(milled.blocks);
+        cand_filled = std::move(milled.filled);
+        cand.deviation_bound = milled.max_deviation;
+      }
+      const double deviation = cand.deviation_bound;
+      merge_stage(std::move(cand_blocks), cand_filled, options, cand);
       add_times(cand);
       if (progress)
         progress->info(at + std::to_string(cand.blocks.size()) + " blocks within the tolerance (deviation bound " +
@@ -1165,6 +1187,7 @@ void overhang_ladder_stage(const Mesh& solid, const std::vector<std::uint8_t>& p
       } else {
         ++result.num_tolerance_rounds;
       }
+      if (failed) break;
       if (deviation > options.tolerance_ladder_slack * result.tolerance) {
         if (progress) progress->info(at + "its blocks leave the tolerance no room for a larger angle: the ladder ends");
         break;

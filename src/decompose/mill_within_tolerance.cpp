@@ -123,10 +123,21 @@ MillToleranceResult mill_within_tolerance(const Mesh& solid, std::vector<Block> 
     if (std::count(which.begin(), which.end(), char{1}) > 0) {
       const std::vector<double> low = fill_deviation_lower_bounds(solid, meshes, boxes_of, options.tolerance, which);
       for (std::size_t k = 0; k < ids.size(); ++k)
-        if (which[k] && low[k] > options.tolerance)
+        if (which[k] && low[k] > options.tolerance) {
           r.failures[ids[k]] = "its milled shape deviates at least " + format_length(low[k]) +
                                " (a sampled point) > the tolerance " + format_length(options.tolerance);
+          r.stopped = options.stop_at_first_failure;
+        }
     }
+  }
+  if (r.stopped) {
+    for (std::size_t i = 0; i < n; ++i)
+      if (r.filled[i] && r.failures[i].empty()) r.failures[i] = "not measured: another block fails";
+    r.blocks = std::move(blocks);
+    if (progress)
+      progress->info(std::to_string(r.num_failed()) + " of " + std::to_string(n) +
+                     " blocks rejected: a sampled point of a milled shape lies beyond the tolerance, nothing measured");
+    return r;
   }
 
   // 3. the deviation near every filled block, the others that stick out

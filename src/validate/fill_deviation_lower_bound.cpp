@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <memory>
 #include <mutex>
 
@@ -93,6 +94,43 @@ std::vector<double> fill_deviation_lower_bounds(const Mesh& solid, const std::ve
           }
           if (!in_other) best = d;
         }
+    }
+    // The other way: a point x of ∂S inside F_k is at least d(x, ∂F_k) from
+    // ∂S' (the open ball of that radius lies in F_k, so in the interior of S').
+    if (!(best > stop)) {
+      others[k].build(m);
+      const detail::SolidIndex& in_block = *others[k].index;
+      const detail::TriangleTree& block_surface = *others[k].surface;
+      std::vector<CGAL::Bbox_3> regions;
+      if (fills[k]) {
+        for (const BoundingBox& x : *fills[k])
+          regions.emplace_back(x.min.x(), x.min.y(), x.min.z(), x.max.x(), x.max.y(), x.max.z());
+      } else {
+        regions.emplace_back(boxes[k].min.x(), boxes[k].min.y(), boxes[k].min.z(), boxes[k].max.x(),
+                             boxes[k].max.y(), boxes[k].max.z());
+      }
+      std::vector<std::size_t> faces;
+      for (const CGAL::Bbox_3& r : regions) {
+        std::vector<detail::TriangleTree::Iterator> hit;
+        surface.tree().all_intersected_primitives(r, std::back_inserter(hit));
+        for (const auto& it : hit) faces.push_back(static_cast<std::size_t>(it - surface.triangles().begin()));
+      }
+      std::sort(faces.begin(), faces.end());
+      faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+      for (std::size_t f : faces) {
+        if (best > stop) break;
+        const Vec3& a = solid.vertices[static_cast<std::size_t>(solid.faces[f][0])];
+        const Vec3& b = solid.vertices[static_cast<std::size_t>(solid.faces[f][1])];
+        const Vec3& c = solid.vertices[static_cast<std::size_t>(solid.faces[f][2])];
+        for (int i = 0; i <= kSteps && !(best > stop); ++i)
+          for (int j = 0; i + j <= kSteps && !(best > stop); ++j) {
+            const double u = static_cast<double>(i) / kSteps, v = static_cast<double>(j) / kSteps;
+            const Vec3 p = (1 - u - v) * a + u * b + v * c;
+            const auto q = detail::TriangleTree::point(p);
+            const double d = std::sqrt(CGAL::squared_distance(q, block_surface.tree().closest_point(q)));
+            if (d > best && in_block.is_inside(p)) best = d;
+          }
+      }
     }
     bound[k] = best;
   });

@@ -44,6 +44,10 @@ struct MillToleranceOptions {
                                      // nothing within its measure's reach changed since: not measured again (its
                                      // milled shape is still made and checked for collisions); nullptr = all measured
   const std::vector<double>* known_deviation = nullptr;  // per block, read where `measure` is 0 (model units)
+  bool stop_at_first_failure = false;  // true: when the sampled lower bound (fill_deviation_lower_bounds())
+                                     // already fails a block, the exact measure is not run: every filled block not
+                                     // failed yet fails as "not measured" (MillToleranceResult::stopped); for a
+                                     // candidate that any failure rejects (decompose()'s overhang ladder)
   Progress* progress = nullptr;      // updates per block and info (nullptr: silent)
 };
 
@@ -54,6 +58,7 @@ struct MillToleranceResult {
   std::vector<std::string> failures;  // per block: why it fails the tolerance (empty: it passes)
   std::vector<double> deviation;      // per block: the measured bound (measure + error), model units; 0 when exact
   double max_deviation = 0.0;         // over the blocks that pass, model units
+  bool stopped = false;               // stop_at_first_failure stopped before the exact measure
   std::size_t num_failed() const;
 };
 

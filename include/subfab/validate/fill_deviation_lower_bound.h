@@ -11,10 +11,14 @@
 //! Such a point lies in F_k \ S, inside the fill of F_k (F_k \ the carved
 //! block, which lies in S): in the region the exact measure of F_k covers,
 //! so that measure (value within its error of the distance, accepted when
-//! value + error <= T) fails whenever d(p, ∂S) > T. The samples: on every
-//! face of F_k meeting the boxes that cover its fill (fill_columns()), the
-//! points of a barycentric grid of step 1/4 (15 per face). Inside/outside
-//! of S and of the other F_j is exact (SolidIndex: the exact parity of a
+//! value + error <= T) fails whenever d(p, ∂S) > T. The other way, a
+//! point x of ∂S inside F_k (buried by its fill) is at least d(x, ∂F_k)
+//! from ∂S' (the open ball of that radius lies in F_k, so in the interior
+//! of S'), and lies in the closure of F_k \ the carved block too. The
+//! samples: the points of a barycentric grid of step 1/4 (15 per face) on
+//! every face of F_k, and for the other way of S, meeting the boxes that
+//! cover the fill (fill_columns()). Inside/outside of S and of the F_j is
+//! exact (SolidIndex: the exact parity of a
 //! ray's crossings, a point on the surface perturbed symbolically); a point
 //! within 1e-7 x the largest coordinate of another F_j's surface counts as
 //! on it (a contact face between two fills is inside S'), which only makes
@@ -29,8 +33,9 @@
 
 namespace subfab {
 
-//! Per filled block k, the largest d(p, ∂S) over its sampled points of ∂S'
-//! (see the file comment; 0 when none), model units. A block's search stops
+//! Per filled block k, the largest d(p, ∂S) over its sampled points p of ∂S',
+//! and d(x, ∂F_k) over the sampled points x of ∂S inside F_k (see the file
+//! comment; 0 when none), model units. A block's search stops
 //! once its bound exceeds `stop` (model units; +infinity: the maximum over
 //! all its samples). Deterministic (a function of the meshes); parallel
 //! over blocks.
