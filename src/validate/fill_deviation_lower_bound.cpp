@@ -25,6 +25,18 @@ bool boxes_meet(const BoundingBox& a, const BoundingBox& b) {
   return (a.min.array() <= b.max.array()).all() && (b.min.array() <= a.max.array()).all();
 }
 
+constexpr int kSteps = 4;  // barycentric grid of step 1/4: 15 points per face
+
+//! Calls visit(p) for the grid points of triangle abc while keep_going().
+template <typename Visit, typename KeepGoing>
+void for_each_sample(const Vec3& a, const Vec3& b, const Vec3& c, const Visit& visit, const KeepGoing& keep_going) {
+  for (int i = 0; i <= kSteps && keep_going(); ++i)
+    for (int j = 0; i + j <= kSteps && keep_going(); ++j) {
+      const double u = static_cast<double>(i) / kSteps, v = static_cast<double>(j) / kSteps;
+      visit(Vec3((1 - u - v) * a + u * b + v * c));
+    }
+}
+
 //! A filled block's exact inside test and surface distance, built on first use.
 struct LazySolid {
   std::once_flag once;
@@ -60,11 +72,11 @@ std::vector<double> fill_deviation_lower_bounds(const Mesh& solid, const std::ve
   }
   const double contact = 1e-7 * std::max(scale, 1e-300);  // on another fill's surface
   std::vector<LazySolid> others(n);
-  constexpr int kSteps = 4;  // barycentric grid of step 1/4: 15 points per face
   parallel_for(0, n, [&](std::size_t k) {
     if (!which.empty() && !which[k]) return;
     const Mesh& m = *filled[k];
     double best = 0.0;
+    const auto not_done = [&] { return !(best > stop); };
     for (std::size_t f = 0; f < m.faces.size() && !(best > stop); ++f) {
       const Vec3& a = m.vertices[static_cast<std::size_t>(m.faces[f][0])];
       const Vec3& b = m.vertices[static_cast<std::size_t>(m.faces[f][1])];
@@ -77,23 +89,21 @@ std::vector<double> fill_deviation_lower_bounds(const Mesh& solid, const std::ve
         if (std::none_of(fills[k]->begin(), fills[k]->end(), [&](const BoundingBox& x) { return boxes_meet(fb, x); }))
           continue;
       }
-      for (int i = 0; i <= kSteps && !(best > stop); ++i)
-        for (int j = 0; i + j <= kSteps && !(best > stop); ++j) {
-          const double u = static_cast<double>(i) / kSteps, v = static_cast<double>(j) / kSteps;
-          const Vec3 p = (1 - u - v) * a + u * b + v * c;
-          const auto q = detail::TriangleTree::point(p);
-          const double d = std::sqrt(CGAL::squared_distance(q, surface.tree().closest_point(q)));
-          if (!(d > best) || inside.is_inside(p)) continue;
-          bool in_other = false;
-          for (std::size_t j2 = 0; j2 < n && !in_other; ++j2) {
-            if (j2 == k || !box_contains(boxes[j2], p, contact)) continue;
-            others[j2].build(*filled[j2]);
-            const double e = std::sqrt(
-                CGAL::squared_distance(q, others[j2].surface->tree().closest_point(q)));
-            in_other = e <= contact || others[j2].index->is_inside(p);
-          }
-          if (!in_other) best = d;
-        }
+      for_each_sample(
+          a, b, c,
+          [&](const Vec3& p) {
+            const auto q = detail::TriangleTree::point(p);
+            const double d = std::sqrt(CGAL::squared_distance(q, surface.tree().closest_point(q)));
+            if (!(d > best) || inside.is_inside(p)) return;
+            for (std::size_t j = 0; j < n; ++j) {
+              if (j == k || !box_contains(boxes[j], p, contact)) continue;
+              others[j].build(*filled[j]);
+              const double e = std::sqrt(CGAL::squared_distance(q, others[j].surface->tree().closest_point(q)));
+              if (e <= contact || others[j].index->is_inside(p)) return;  // on or in another fill
+            }
+            best = d;
+          },
+          not_done);
     }
     // The other way: a point x of ∂S inside F_k is at least d(x, ∂F_k) from
     // ∂S' (the open ball of that radius lies in F_k, so in the interior of S').
@@ -122,14 +132,14 @@ std::vector<double> fill_deviation_lower_bounds(const Mesh& solid, const std::ve
         const Vec3& a = solid.vertices[static_cast<std::size_t>(solid.faces[f][0])];
         const Vec3& b = solid.vertices[static_cast<std::size_t>(solid.faces[f][1])];
         const Vec3& c = solid.vertices[static_cast<std::size_t>(solid.faces[f][2])];
-        for (int i = 0; i <= kSteps && !(best > stop); ++i)
-          for (int j = 0; i + j <= kSteps && !(best > stop); ++j) {
-            const double u = static_cast<double>(i) / kSteps, v = static_cast<double>(j) / kSteps;
-            const Vec3 p = (1 - u - v) * a + u * b + v * c;
-            const auto q = detail::TriangleTree::point(p);
-            const double d = std::sqrt(CGAL::squared_distance(q, block_surface.tree().closest_point(q)));
-            if (d > best && in_block.is_inside(p)) best = d;
-          }
+        for_each_sample(
+            a, b, c,
+            [&](const Vec3& p) {
+              const auto q = detail::TriangleTree::point(p);
+              const double d = std::sqrt(CGAL::squared_distance(q, block_surface.tree().closest_point(q)));
+              if (d > best && in_block.is_inside(p)) best = d;
+            },
+            not_done);
       }
     }
     bound[k] = best;
