@@ -1094,11 +1094,11 @@ bool stages_within_tolerance(const Mesh& solid, const std::vector<std::array<dou
 //! bound fails a block, nothing is measured exactly; else the failing
 //! blocks' carved pieces are decomposed again in place,
 //! replace_failed_blocks(), and the result kept if it has fewer blocks), at
-//! one that passes with
-//! a deviation above the slack (no room left), at one with at least
-//! max(B + 2, (1 + tolerance_exact_margin) B) blocks, B the best so far (egea
-//! at 8.3e-2: 60 blocks at 5 deg against 6; the covers of the larger angles
-//! took minutes), when a carve fails, or at one block. Sets result (its timings include the ladder's) and `filled`.
+//! one that passes with a deviation above the slack (no room left), at one
+//! with at least max(B + 2, (1 + tolerance_exact_margin) B) blocks, B the
+//! best so far (egea at 8.3e-2: 60 blocks at 5 deg against 6; the covers
+//! of the larger angles took minutes), when a carve fails, or at one block.
+//! Sets result (its timings include the ladder's) and `filled`.
 void overhang_ladder_stage(const Mesh& solid, const std::vector<std::uint8_t>& pinned, const Mesh& input,
                            const DecomposeOptions& options, const DecomposeResult& base, DecomposeResult& result,
                            std::vector<char>& filled) {
