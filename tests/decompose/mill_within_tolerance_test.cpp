@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <string>
 #include <vector>
 
 #include "subfab/core/error.h"
@@ -65,6 +66,25 @@ TEST(MillWithinTolerance, AKnownDeviationIsTakenInsteadOfMeasured) {
   EXPECT_THROW(mill_within_tolerance(box, whole_box(box), o), InvalidArgumentError);
   o.known_deviation = nullptr;
   EXPECT_THROW(mill_within_tolerance(box, whole_box(box), o), InvalidArgumentError);
+}
+
+TEST(MillWithinTolerance, ASampledPointBeyondTheToleranceFailsTheBlockBeforeItsMeasure) {
+  // The groove's fill moves the surface by 1: at T = 0.9 the sampled lower
+  // bound (fill_deviation_lower_bound.h) already fails the block; with
+  // stop_at_first_failure the result says nothing was measured.
+  const Mesh box = voxel_mesh(grooved_box_cells());
+  MillToleranceOptions o;
+  o.tolerance = 0.9;
+  const MillToleranceResult r = mill_within_tolerance(box, whole_box(box), o);
+  ASSERT_EQ(r.num_failed(), 1u);
+  EXPECT_NE(r.failures[0].find("a sampled point"), std::string::npos) << r.failures[0];
+  EXPECT_FALSE(r.stopped);
+  o.stop_at_first_failure = true;
+  EXPECT_TRUE(mill_within_tolerance(box, whole_box(box), o).stopped);
+  o.tolerance = 1.5;  // within it: measured, nothing stopped
+  const MillToleranceResult wide = mill_within_tolerance(box, whole_box(box), o);
+  EXPECT_FALSE(wide.stopped);
+  EXPECT_EQ(wide.num_failed(), 0u);
 }
 
 }  // namespace
