@@ -12,14 +12,6 @@ namespace subfab::detail {
 
 namespace PMP = CGAL::Polygon_mesh_processing;
 
-bool boxes_touch(const BoundingBox& a, const BoundingBox& b) {
-  return (a.min.array() <= b.max.array()).all() && (b.min.array() <= a.max.array()).all();
-}
-
-bool interiors_meet(const BoundingBox& a, const BoundingBox& b) {
-  return (a.min.array() < b.max.array()).all() && (b.min.array() < a.max.array()).all();
-}
-
 std::vector<BoundingBox> block_boxes(const std::vector<Block>& blocks) {
   std::vector<BoundingBox> boxes(blocks.size());
   for (std::size_t i = 0; i < blocks.size(); ++i) boxes[i] = bounding_box(blocks[i].mesh);

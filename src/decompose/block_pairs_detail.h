@@ -10,16 +10,11 @@
 #include <optional>
 #include <vector>
 
+#include "geometry/box_tests.h"
 #include "geometry/exact_mesh.h"
 #include "subfab/decompose/carve_blocks.h"
 
 namespace subfab::detail {
-
-//! Do the closed boxes a and b meet (touching counts)?
-bool boxes_touch(const BoundingBox& a, const BoundingBox& b);
-
-//! Do the open interiors of the boxes a and b meet (touching does not count)?
-bool interiors_meet(const BoundingBox& a, const BoundingBox& b);
 
 //! The bounding box of each block's mesh, in order.
 std::vector<BoundingBox> block_boxes(const std::vector<Block>& blocks);

@@ -981,6 +981,15 @@ std::size_t recarve_slivers(const Mesh& solid, const Mesh& input, const Decompos
 //! Adds the time the stages 2-6 spent between `before` and `after` (field,
 //! grow, cover, resolve, carve) to `t`: a result kept from two paths counts
 //! both.
+//! The block count a carve reaches when it has far more blocks than `best`
+//! (DecomposeOptions::tolerance_exact_margin `margin` >= 0): max(best + 2,
+//! ceil((1 + margin) best)). Rounds under allowances against the exact
+//! decomposition and the overhang ladder against the best so far.
+std::size_t far_more_blocks(std::size_t best, double margin) {
+  const auto b = static_cast<double>(best);
+  return static_cast<std::size_t>(std::max(b + 2, std::ceil((1 + margin) * b)));
+}
+
 void add_stage_times(DecomposeTimings& t, const DecomposeTimings& after, const DecomposeTimings& before) {
   t.field += after.field - before.field;
   t.grow += after.grow - before.grow;
@@ -1127,10 +1136,8 @@ void overhang_ladder_stage(const Mesh& solid, const std::vector<std::uint8_t>& p
       if (carved.size() >= result.blocks.size()) {
         // far more blocks than the best: the larger angles are not expected
         // to cut that many (the rule of tolerance_exact_margin)
-        const auto best = static_cast<double>(result.blocks.size());
         const bool far = options.tolerance_exact_margin >= 0 &&
-                         static_cast<double>(carved.size()) >=
-                             std::max(best + 2, std::ceil((1 + options.tolerance_exact_margin) * best));
+                         carved.size() >= far_more_blocks(result.blocks.size(), options.tolerance_exact_margin);
         if (progress)
           progress->info(at + std::to_string(carved.size()) + " blocks carved, not fewer than " +
                          std::to_string(result.blocks.size()) +
@@ -1329,10 +1336,7 @@ DecomposeResult decompose_once(const Mesh& input, const DecomposeOptions& option
   }
   if (result.tolerance > 0) {
     std::size_t exact_limit = 0;
-    if (exact_made) {
-      const auto e = static_cast<double>(exact_made->blocks.size());
-      exact_limit = static_cast<std::size_t>(std::max(e + 2, std::ceil((1 + options.tolerance_exact_margin) * e)));
-    }
+    if (exact_made) exact_limit = far_more_blocks(exact_made->blocks.size(), options.tolerance_exact_margin);
     try {
       const bool passed =
           stages_within_tolerance(solid, depths, pinned, input, options, result, blocks, filled, carve_limit, exact_limit);

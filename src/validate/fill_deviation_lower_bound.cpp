@@ -9,6 +9,7 @@
 #include <memory>
 #include <mutex>
 
+#include "geometry/box_tests.h"
 #include "geometry/solid_index.h"
 #include "geometry/triangle_tree.h"
 #include "subfab/core/error.h"
@@ -19,10 +20,6 @@ namespace {
 
 bool box_contains(const BoundingBox& b, const Vec3& p, double slack) {
   return (p.array() >= b.min.array() - slack).all() && (p.array() <= b.max.array() + slack).all();
-}
-
-bool boxes_meet(const BoundingBox& a, const BoundingBox& b) {
-  return (a.min.array() <= b.max.array()).all() && (b.min.array() <= a.max.array()).all();
 }
 
 constexpr int kSteps = 4;  // barycentric grid of step 1/4: 15 points per face
@@ -86,8 +83,8 @@ std::vector<double> fill_deviation_lower_bounds(const Mesh& solid, const std::ve
         fb.extend(a);
         fb.extend(b);
         fb.extend(c);
-        if (std::none_of(fills[k]->begin(), fills[k]->end(), [&](const BoundingBox& x) { return boxes_meet(fb, x); }))
-          continue;
+        const auto meets = [&](const BoundingBox& x) { return detail::boxes_touch(fb, x); };
+        if (std::none_of(fills[k]->begin(), fills[k]->end(), meets)) continue;
       }
       for_each_sample(
           a, b, c,

@@ -17,6 +17,7 @@
 #include <optional>
 #include <utility>
 
+#include "geometry/box_tests.h"
 #include "geometry/clip_solid_to_box.h"
 #include "geometry/deterministic_arena.h"
 #include "geometry/exact_mesh.h"
@@ -39,10 +40,6 @@ std::pair<long, long> tile_of(const BoundingBox& b, const BoundingBox& all, int 
 
 namespace PMP = CGAL::Polygon_mesh_processing;
 using detail::ExactMesh;
-
-bool boxes_meet(const BoundingBox& a, const BoundingBox& b) {
-  return (a.min.array() <= b.max.array()).all() && (b.min.array() <= a.max.array()).all();
-}
 
 BoundingBox widened(BoundingBox box, double margin) {
   box.min.array() -= margin;
@@ -224,7 +221,7 @@ std::vector<BoundingBox> merge_close(std::vector<BoundingBox> boxes, double dist
     merged = false;
     for (std::size_t a = 0; a < boxes.size() && !merged; ++a)
       for (std::size_t b = a + 1; b < boxes.size() && !merged; ++b)
-        if (boxes_meet(widened(boxes[a], distance / 2), widened(boxes[b], distance / 2))) {
+        if (detail::boxes_touch(widened(boxes[a], distance / 2), widened(boxes[b], distance / 2))) {
           boxes[a].extend(boxes[b].min);
           boxes[a].extend(boxes[b].max);
           boxes.erase(boxes.begin() + static_cast<std::ptrdiff_t>(b));
@@ -616,8 +613,8 @@ FillDeviation FillDeviationMeter::Impl::measure_at(const Mesh& block, const std:
     const auto cover = options.others_cover ? options.others_cover->find(o) : FillCoverMap::const_iterator{};
     const bool meets = options.others_cover && cover != options.others_cover->end()
                            ? std::any_of(cover->second.begin(), cover->second.end(),
-                                         [&](const BoundingBox& c) { return boxes_meet(c, region); })
-                           : boxes_meet(bounding_box(*o), region);
+                                         [&](const BoundingBox& c) { return detail::boxes_touch(c, region); })
+                           : detail::boxes_touch(bounding_box(*o), region);
     if (meets) close.push_back(o);
   }
   std::string error;

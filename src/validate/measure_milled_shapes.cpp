@@ -19,6 +19,7 @@
 #include "subfab/core/parallel.h"
 #include "subfab/validate/milled_shape.h"
 #include "subfab/validate/validate_decomposition.h"
+#include "geometry/box_tests.h"
 #include "geometry/solid_index.h"
 #include "geometry/surface_deviation.h"
 #include "geometry/triangle_tree.h"
@@ -30,10 +31,6 @@ namespace {
 using Epick = CGAL::Exact_predicates_inexact_constructions_kernel;
 using SurfaceMesh = detail::DistanceMesh;
 
-bool boxes_meet(const BoundingBox& a, const BoundingBox& b) {
-  return (a.min.array() <= b.max.array()).all() && (b.min.array() <= a.max.array()).all();
-}
-
 //! Appends the faces of `m` (those listed in `faces`, all when null) whose
 //! bounding box meets `reach` (all when it is empty) to the face graph `sm`
 //! of the distance queries (geometry's append_distance_patch()).
@@ -43,7 +40,7 @@ void append(SurfaceMesh& sm, const Mesh& m, const std::vector<int>* faces = null
   auto keep = [&](int f) {
     BoundingBox fb;
     for (int v : m.faces[static_cast<std::size_t>(f)]) fb.extend(m.vertices[static_cast<std::size_t>(v)]);
-    if (boxes_meet(fb, reach)) near.push_back(f);
+    if (detail::boxes_touch(fb, reach)) near.push_back(f);
   };
   if (faces)
     for (int f : *faces) keep(f);
@@ -108,7 +105,7 @@ std::vector<int> uncovered_faces(const MilledShape& milled, const Mesh& block, d
     const std::array<Eigen::Vector2d, 3> t2{in_plane(c[0]), in_plane(c[1]), in_plane(c[2])};
     double covered = 0.0;
     for (std::size_t g = 0; g < block.num_faces(); ++g) {
-      if (!boxes_meet(block_boxes[g], box) || block_normals[g].dot(n) <= 0.0) continue;
+      if (!detail::boxes_touch(block_boxes[g], box) || block_normals[g].dot(n) <= 0.0) continue;
       const std::array<Vec3, 3> d{block.vertices[static_cast<std::size_t>(block.faces[g][0])],
                                   block.vertices[static_cast<std::size_t>(block.faces[g][1])],
                                   block.vertices[static_cast<std::size_t>(block.faces[g][2])]};

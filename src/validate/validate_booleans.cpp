@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/box_tests.h"
 #include "geometry/deterministic_arena.h"
 #include "geometry/exact_mesh.h"
 #include "geometry/union_surface.h"
@@ -110,10 +111,6 @@ bool guarded(Op op) {
   }
 }
 
-bool boxes_overlap(const BoundingBox& a, const BoundingBox& b) {
-  return (a.min.array() < b.max.array()).all() && (b.min.array() < a.max.array()).all();
-}
-
 }  // namespace
 
 namespace {
@@ -181,7 +178,7 @@ bool clip_to(ExactMesh& m, const BoundingBox& box) {
 //! blocks_overlap() with its volumes evaluated by `mode`.
 double overlap_volume(const Mesh& a, const Mesh& b, Volume mode) {
   const BoundingBox ba = bounding_box(a), bb = bounding_box(b);
-  if (!boxes_overlap(ba, bb)) return 0.0;
+  if (!detail::interiors_meet(ba, bb)) return 0.0;
   require_boolean_input(a, "a block", true);
   require_boolean_input(b, "a block", true);
   // a ∩ b lies in the common box of their bounding boxes: clip both to it
@@ -220,7 +217,7 @@ double overlap_volume(const Mesh& a, const Mesh& b, Volume mode) {
 
 //! volume_outside() with its volumes evaluated by `mode`.
 double outside_volume(const Mesh& block, const Mesh& solid, Volume mode) {
-  if (!boxes_overlap(bounding_box(block), bounding_box(solid))) return signed_volume(block);
+  if (!detail::interiors_meet(bounding_box(block), bounding_box(solid))) return signed_volume(block);
   require_boolean_input(block, "the block", true);
   require_boolean_input(solid, "the input");
   const ExactMesh eb = detail::to_exact(block), es = detail::to_exact(solid);
@@ -309,7 +306,7 @@ void outside_in_arena(const Mesh& block, const Mesh& solid, std::optional<detail
 }  // namespace
 
 detail::OutsidePart detail::outside_part(const Mesh& block, const Mesh& solid) {
-  if (!boxes_overlap(bounding_box(block), bounding_box(solid))) return {signed_volume(block), block, std::nullopt};
+  if (!detail::interiors_meet(bounding_box(block), bounding_box(solid))) return {signed_volume(block), block, std::nullopt};
   require_boolean_input(block, "the block", true);
   require_boolean_input(solid, "the input");
   detail::warm_up_exact_booleans();

@@ -28,6 +28,13 @@ namespace {
 using test::grooved_box_cells;
 using test::voxel_mesh;
 
+//! validate's report on the exported blocks of `r`, at its tolerance.
+ValidationReport validated(const Mesh& input, const DecomposeResult& r) {
+  ValidationOptions vo;
+  vo.tolerance = r.tolerance;
+  return validate_decomposition(input, test::to_validation(make_exported_blocks(input, r)), vo);
+}
+
 TEST(ToleranceAllowances, AllowsTheGroovesCeilingOnlyWhenItsUndercutIsWithinTheTolerance) {
   // The groove (z 4..6, 1 deep) has a ceiling facing -z: filling under it
   // leaves material 2 thick along z (the groove's height) on the +z side.
@@ -243,10 +250,7 @@ TEST(ToleranceAllowances, ABaseFloorLetsABlockWhoseBaseLiesJustUnderAShallowOver
   EXPECT_GT(floored.deviation_bound, 0.9);  // the filled ring, 1 deep
   EXPECT_LE(floored.deviation_bound, 1.2);
   for (const Block& b : floored.blocks) EXPECT_TRUE(is_height_field(b.mesh, axis_direction(b.axis)));
-  ValidationOptions vo;
-  vo.tolerance = floored.tolerance;
-  const ValidationReport report =
-      validate_decomposition(solid, test::to_validation(make_exported_blocks(solid, floored)), vo);
+  const ValidationReport report = validated(solid, floored);
   for (const CheckReport& c : report.checks) {
     // T is 6.5% of this small model's diagonal: the plate (1 thick, 5.4%) is
     // thinner than T by construction, so the sliver check is not asked here.
@@ -326,10 +330,7 @@ TEST(ToleranceAllowances, ASpikeTheRepairCannotFixIsLeftToTheTolerance) {
     EXPECT_TRUE(check_closed_solid(b.mesh).ok());
     EXPECT_TRUE(is_height_field(b.mesh, axis_direction(b.axis)));  // exact whatever the tolerance
   }
-  ValidationOptions vo;
-  vo.tolerance = t.tolerance;
-  const ValidationReport report =
-      validate_decomposition(spiked, test::to_validation(make_exported_blocks(spiked, t)), vo);
+  const ValidationReport report = validated(spiked, t);
   for (const CheckReport& c : report.checks)
     EXPECT_TRUE(c.passed) << c.name << ": " << (c.failures.empty() ? c.summary : c.failures[0]);
   // --exact refuses to repair, but nothing needs repairing within the tolerance.
@@ -462,10 +463,7 @@ TEST(ToleranceAllowances, TheOverhangLadderKeepsAUniformAngleWhoseMilledShapesPa
   EXPECT_GT(laddered.deviation_bound, 0.2);
   EXPECT_LE(laddered.deviation_bound, 1.0);
   EXPECT_TRUE(is_height_field(laddered.blocks[0].mesh, axis_direction(laddered.blocks[0].axis)));
-  ValidationOptions vo;
-  vo.tolerance = laddered.tolerance;
-  const ValidationReport report =
-      validate_decomposition(m, test::to_validation(make_exported_blocks(m, laddered)), vo);
+  const ValidationReport report = validated(m, laddered);
   for (const CheckReport& c : report.checks)
     EXPECT_TRUE(c.passed) << c.name << ": " << (c.failures.empty() ? c.summary : c.failures[0]);
   o.tolerance_abs = 0.3;
