@@ -397,6 +397,7 @@ int run_validate(const ValidateArgs& args) {
     j["against_input"] = args.against_input;
     if (options.tolerance > 0)
       j["deviation"] = {{"num_sticking_out", report.num_filled},
+                        {"num_bounded_by_parts", report.num_bounded_by_parts},
                         {"to_input", report.deviation_to_input},
                         {"from_input", report.deviation_from_input},
                         {"max_fraction", std::max(report.deviation_to_input, report.deviation_from_input) / diagonal},

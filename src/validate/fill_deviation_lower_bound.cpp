@@ -6,14 +6,13 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
-#include <memory>
-#include <mutex>
 
 #include "geometry/box_tests.h"
 #include "geometry/solid_index.h"
 #include "geometry/triangle_tree.h"
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
+#include "validate/lazy_solid.h"
 
 namespace subfab {
 namespace {
@@ -33,20 +32,6 @@ void for_each_sample(const Vec3& a, const Vec3& b, const Vec3& c, const Visit& v
       visit(Vec3((1 - u - v) * a + u * b + v * c));
     }
 }
-
-//! A filled block's exact inside test and surface distance, built on first use.
-struct LazySolid {
-  std::once_flag once;
-  std::unique_ptr<detail::SolidIndex> index;
-  std::unique_ptr<detail::TriangleTree> surface;
-  void build(const Mesh& m) {
-    std::call_once(once, [&] {
-      index = std::make_unique<detail::SolidIndex>(m);
-      surface = std::make_unique<detail::TriangleTree>(m);
-      surface->accelerate_distance_queries();
-    });
-  }
-};
 
 }  // namespace
 
@@ -68,7 +53,7 @@ std::vector<double> fill_deviation_lower_bounds(const Mesh& solid, const std::ve
     if (!boxes[k].is_empty()) scale = std::max({scale, boxes[k].min.cwiseAbs().maxCoeff(), boxes[k].max.cwiseAbs().maxCoeff()});
   }
   const double contact = 1e-7 * std::max(scale, 1e-300);  // on another fill's surface
-  std::vector<LazySolid> others(n);
+  std::vector<detail::LazySolid> others(n);
   parallel_for(0, n, [&](std::size_t k) {
     if (!which.empty() && !which[k]) return;
     const Mesh& m = *filled[k];

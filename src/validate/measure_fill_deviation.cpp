@@ -204,14 +204,16 @@ void local_surface_in_arena(const Mesh& solid, const detail::SolidIndex& index, 
   }
 }
 
-//! 16 ulps of the largest coordinate of `mesh`: the rounding slack of
-//! measure_fill() (see the header).
+}  // namespace
+
 double rounding_slack(const Mesh& mesh) {
   const BoundingBox b = bounding_box(mesh);
   if (b.is_empty()) return 0.0;
   const double m = std::max(b.min.cwiseAbs().maxCoeff(), b.max.cwiseAbs().maxCoeff());
   return 16.0 * std::numeric_limits<double>::epsilon() * m;
 }
+
+namespace {
 
 //! Boxes closer than `distance` (>= 0; 0 = none merged) replaced by their
 //! bounding box, repeatedly: their regions would overlap, and one region

@@ -247,17 +247,58 @@ double detail::exact_volume_outside(const Mesh& block, const Mesh& solid) {
 
 namespace {
 
+using EpickTree = CGAL::AABB_tree<CGAL::AABB_traits<
+    CGAL::Exact_predicates_inexact_constructions_kernel,
+    CGAL::AABB_triangle_primitive<CGAL::Exact_predicates_inexact_constructions_kernel,
+                                  std::vector<CGAL::Exact_predicates_inexact_constructions_kernel::Triangle_3>::const_iterator>>>;
+
+//! Whether the face (a, b, c), a face of a mesh corefined with `solid`,
+//! lies on the solid's surface: its exact centroid lies on one of the
+//! solid's faces (`tree` holds those near the block as doubles, face
+//! triangles[i] is the solid's face ids[i]: candidates by box, then exact
+//! tests).
+bool lies_on_solid(const detail::ExactPoint& a, const detail::ExactPoint& b, const detail::ExactPoint& c,
+                   const Mesh& solid, const EpickTree& tree,
+                   const std::vector<CGAL::Exact_predicates_inexact_constructions_kernel::Triangle_3>& triangles,
+                   const std::vector<int>& ids) {
+  using EK = detail::ExactKernel;
+  const EK::Point_3 m = CGAL::centroid(a, b, c);
+  const CGAL::Bbox_3 box = m.bbox();
+  std::vector<EpickTree::Primitive_id> hit;
+  tree.all_intersected_primitives(box, std::back_inserter(hit));
+  std::sort(hit.begin(), hit.end());  // face order: the same answer whatever the tree's order
+  for (const auto& it : hit) {
+    const Triangle& t = solid.faces[static_cast<std::size_t>(ids[static_cast<std::size_t>(it - triangles.begin())])];
+    auto point = [&](int v) {
+      const Vec3& q = solid.vertices[static_cast<std::size_t>(v)];
+      return EK::Point_3(q.x(), q.y(), q.z());
+    };
+    if (EK::Triangle_3(point(t[0]), point(t[1]), point(t[2])).has_on(m)) return true;
+  }
+  return false;
+}
+
 //! The boolean of outside_part(), inside the caller's arena: fills `out`
 //! (under a SuspendArena) or leaves it empty when the corefinement cannot
 //! give a 2-manifold.
-void outside_in_arena(const Mesh& block, const Mesh& solid, std::optional<detail::OutsidePart>& out) {
+void outside_in_arena(const Mesh& block, const Mesh& solid, const EpickTree& tree,
+                      const std::vector<CGAL::Exact_predicates_inexact_constructions_kernel::Triangle_3>& triangles,
+                      const std::vector<int>& ids, std::optional<detail::OutsidePart>& out) {
   ExactMesh eb = detail::to_exact(block), es = detail::to_exact(solid), d;
   if (PMP::corefine_and_compute_difference(eb, es, d, kThrowOnSelfIntersection, kThrowOnSelfIntersection)) {
     const double volume = std::max(0.0, mesh_volume(d));
+    std::vector<char> on_input;
+    on_input.reserve(d.number_of_faces());
+    for (auto f : d.faces()) {  // the order of to_double()
+      const auto h = d.halfedge(f);
+      on_input.push_back(lies_on_solid(d.point(d.source(h)), d.point(d.target(h)), d.point(d.target(d.next(h))),
+                                       solid, tree, triangles, ids));
+    }
     detail::SuspendArena heap;
     out.emplace();
     out->volume = volume;
     out->mesh = detail::to_double(d);
+    out->on_input.assign(on_input.begin(), on_input.end());  // a copy on the heap (on_input is in the arena)
     return;
   }
   // Not a 2-manifold: its faces, classified on eb and es as the failed
@@ -272,6 +313,7 @@ void outside_in_arena(const Mesh& block, const Mesh& solid, std::optional<detail
   std::map<detail::ExactPoint, int, detail::ExactPointLess> index;
   std::vector<detail::ExactPoint> points;
   std::vector<Triangle> faces;
+  std::vector<char> on_input;
   for (const auto& [k, f] : kept) {
     const ExactMesh& m = operands[k];
     Triangle t{};
@@ -284,6 +326,9 @@ void outside_in_arena(const Mesh& block, const Mesh& solid, std::optional<detail
     }
     if (k == 1) std::swap(t[1], t[2]);  // the input's faces, turned to face out of the difference
     faces.push_back(t);
+    // the input's faces lie on it; the block's may (kept where the input lies on their other side)
+    on_input.push_back(k == 1 || lies_on_solid(points[static_cast<std::size_t>(t[0])], points[static_cast<std::size_t>(t[1])],
+                                               points[static_cast<std::size_t>(t[2])], solid, tree, triangles, ids));
   }
   // The volume bounded by the faces (closed, outward: the divergence theorem
   // holds for a non-manifold surface too), exact.
@@ -295,6 +340,7 @@ void outside_in_arena(const Mesh& block, const Mesh& solid, std::optional<detail
   detail::SuspendArena heap;
   out.emplace();
   out->volume = volume;
+  out->on_input.assign(on_input.begin(), on_input.end());  // a copy on the heap (on_input is in the arena)
   Mesh& soup = out->boundary.emplace();
   soup.faces = faces;
   soup.vertices.reserve(points.size());
@@ -306,14 +352,45 @@ void outside_in_arena(const Mesh& block, const Mesh& solid, std::optional<detail
 }  // namespace
 
 detail::OutsidePart detail::outside_part(const Mesh& block, const Mesh& solid) {
-  if (!detail::interiors_meet(bounding_box(block), bounding_box(solid))) return {signed_volume(block), block, std::nullopt};
+  // the solid's faces near the block, for the classification of the part's faces
+  using Epick = CGAL::Exact_predicates_inexact_constructions_kernel;
+  BoundingBox near = bounding_box(block);
+  near.min.array() -= 1e-9 * near.diagonal();
+  near.max.array() += 1e-9 * near.diagonal();
+  std::vector<Epick::Triangle_3> triangles;
+  std::vector<int> ids;
+  for (std::size_t f = 0; f < solid.faces.size(); ++f) {
+    BoundingBox b;
+    for (int v : solid.faces[f]) b.extend(solid.vertices[static_cast<std::size_t>(v)]);
+    if (!detail::boxes_touch(b, near)) continue;
+    auto point = [&](int v) {
+      const Vec3& q = solid.vertices[static_cast<std::size_t>(v)];
+      return Epick::Point_3(q.x(), q.y(), q.z());
+    };
+    triangles.emplace_back(point(solid.faces[f][0]), point(solid.faces[f][1]), point(solid.faces[f][2]));
+    ids.push_back(static_cast<int>(f));
+  }
+  EpickTree tree(triangles.begin(), triangles.end());
+  tree.build();  // now, outside the arena (CGAL builds it on the first query otherwise)
+  if (!detail::interiors_meet(bounding_box(block), bounding_box(solid))) {
+    OutsidePart whole{signed_volume(block), block, std::nullopt, {}};
+    for (const Triangle& t : block.faces) {
+      auto point = [&](int v) {
+        const Vec3& q = block.vertices[static_cast<std::size_t>(v)];
+        return detail::ExactPoint(q.x(), q.y(), q.z());
+      };
+      whole.on_input.push_back(lies_on_solid(point(t[0]), point(t[1]), point(t[2]), solid, tree, triangles, ids));
+    }
+    return whole;
+  }
   require_boolean_input(block, "the block", true);
   require_boolean_input(solid, "the input");
   detail::warm_up_exact_booleans();
   std::optional<OutsidePart> out;
   // CGAL may refuse an operand (a self-intersection near the cut): the
   // fallback below reports it, outside the arena.
-  if (detail::run_in_arena([&] { outside_in_arena(block, solid, out); }).empty() && out) return std::move(*out);
+  if (detail::run_in_arena([&] { outside_in_arena(block, solid, tree, triangles, ids, out); }).empty() && out)
+    return std::move(*out);
   return {volume_outside(block, solid), std::nullopt, std::nullopt};
 }
 

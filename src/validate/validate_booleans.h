@@ -6,6 +6,7 @@
 #pragma once
 
 #include <optional>
+#include <vector>
 
 #include "subfab/mesh/mesh.h"
 
@@ -30,6 +31,13 @@ struct OutsidePart {
   //! a triangle soup (difference_surface(), vertices shared by exact
   //! position, rounded to doubles), when that classification succeeded.
   std::optional<Mesh> boundary;
+  //! Per face of `mesh` or `boundary`: 1 when it lies on the solid's surface
+  //! (a piece of the input's surface the block covers, or of the block's
+  //! surface lying in it), 0 when it is a piece of the block's surface whose
+  //! interior lies outside the closed solid; decided exactly, on the exact
+  //! faces before their rounding (a corefined face lies on the solid's
+  //! surface iff its centroid does). fill_deviation_upper_bound.h needs it.
+  std::vector<char> on_input;
 };
 
 //! volume_outside() that also gives the part outside: block \\ solid by

@@ -8,6 +8,7 @@
 #include "subfab/validate/block_name.h"
 #include "subfab/validate/check_single_precision.h"
 #include "subfab/validate/match_frame_blocks.h"
+#include "subfab/validate/fill_deviation_upper_bound.h"
 #include "subfab/validate/measure_fill_deviation.h"
 
 #include <algorithm>
@@ -359,6 +360,7 @@ ValidationReport validate_decomposition(const Mesh& input, const std::vector<Val
   std::vector<std::size_t> filled;  // blocks sticking out of the input (checked by check 10)
   // block \ input where check 4's boolean gave it, else its faces (a soup) where they could be classified
   std::vector<std::optional<Mesh>> outside_parts(n);
+  std::vector<std::vector<char>> outside_on_input(n);  // per face of outside_parts[i]: on the input's surface
   CheckReport inside = named_check(tolerant ? "inside the input, or sticking out within the tolerance (check 10)"
                                             : "inside the input (volume outside <= 1e-6 of the block)");
   {
@@ -374,6 +376,7 @@ ValidationReport validate_decomposition(const Mesh& input, const std::vector<Val
           detail::OutsidePart part = detail::outside_part(blocks[i].mesh, input);
           out[i] = part.volume;
           outside_parts[i] = part.mesh ? std::move(part.mesh) : std::move(part.boundary);
+          outside_on_input[i] = std::move(part.on_input);
         } else {
           out[i] = volume_outside(blocks[i].mesh, input);  // no arena, no mesh kept: faster (kitten 45 vs 70 s)
         }
@@ -609,6 +612,9 @@ ValidationReport validate_decomposition(const Mesh& input, const std::vector<Val
     // solid_columns() needs only its boundary), in the columns of the whole
     // block where neither could be made.
     std::vector<std::optional<std::vector<BoundingBox>>> cover(filled.size());
+    std::vector<std::optional<Mesh>> frame_parts(filled.size());  // the parts made again in decompose's frame
+    std::vector<std::vector<char>> frame_on_input(filled.size());
+    std::vector<FillPart> part_of(filled.size());  // each block's part (either kind)
     std::vector<std::string> errors(filled.size());
     // A frame block equal to its exported block, in a frame equal to the
     // input's (a model decompose did not turn): check 4's part is its part.
@@ -620,23 +626,58 @@ ValidationReport validate_decomposition(const Mesh& input, const std::vector<Val
         const bool same = same_input && blocks[i].frame_mesh->vertices == blocks[i].mesh.vertices;
         if (frame && !same) {
           if (!frame->refused[i].empty()) return;
-          const detail::OutsidePart part = detail::outside_part(*sticking[k], model);
-          if (part.mesh || part.boundary) cover[k] = solid_columns(part.mesh ? *part.mesh : *part.boundary);
+          detail::OutsidePart part = detail::outside_part(*sticking[k], model);
+          if (part.mesh || part.boundary) {
+            frame_parts[k] = part.mesh ? std::move(part.mesh) : std::move(part.boundary);
+            frame_on_input[k] = std::move(part.on_input);
+            part_of[k] = {&*frame_parts[k], &frame_on_input[k]};
+            cover[k] = solid_columns(*frame_parts[k]);
+          }
         } else if (outside_parts[i]) {
+          part_of[k] = {&*outside_parts[i], &outside_on_input[i]};
           cover[k] = solid_columns(*outside_parts[i]);
         }
       } catch (const std::exception& e) {
         errors[k] = e.what();
       }
     });
+    const double parts_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - parts_start).count();
+    // Back to the exported blocks: stretch x D + the rounding (match_frame_blocks.h).
+    const double stretch = frame ? frame->stretch : 1.0;
+    const double rounding = frame ? frame->rounding() : 0.0;
+    // First the cheap upper bound over each part's surface
+    // (fill_deviation_upper_bound.h): a block it clears within the tolerance
+    // is not measured in regions.
+    const auto bound_start = std::chrono::steady_clock::now();
+    for (std::size_t k = 0; k < filled.size(); ++k)
+      if (!errors[k].empty() || (frame && !frame->refused[filled[k]].empty())) part_of[k] = {};
+    FillDeviationUpperBounds upper;
+    try {
+      upper = fill_deviation_upper_bounds(model, sticking, part_of, error, options.tolerance / stretch);
+    } catch (const std::exception&) {
+      upper.blocks.assign(filled.size(), {});  // no bound (CGAL refused a distance query): measure them all
+    }
+    std::vector<char> cleared(filled.size(), 0);
+    std::size_t num_cleared = 0;
+    for (std::size_t k = 0; k < filled.size(); ++k)
+      if (part_of[k].faces && stretch * upper.blocks[k].bound() + rounding <= options.tolerance) {
+        cleared[k] = 1;
+        ++num_cleared;
+      }
+    report.num_bounded_by_parts = num_cleared;
     if (progress) {
       std::size_t regions = 0;
-      for (const auto& c : cover) regions += c ? c->size() : 1;
-      progress->info("measuring the deviation in " + std::to_string(regions) + " region(s) of " +
-                     std::to_string(filled.size()) + " block(s) sticking out (their parts outside the input" +
+      for (std::size_t k = 0; k < filled.size(); ++k)
+        if (!cleared[k]) regions += cover[k] ? cover[k]->size() : 1;
+      progress->info(std::to_string(num_cleared) + " of " + std::to_string(filled.size()) +
+                     " block(s) sticking out within the tolerance by the bound over their parts' surfaces (" +
+                     std::to_string(upper.target_faces) + " of " + std::to_string(upper.part_faces) +
+                     " part faces on the model made for sure; " +
+                     fmt("%.2f", std::chrono::duration<double>(std::chrono::steady_clock::now() - bound_start).count()) +
+                     " s); measuring the deviation in " + std::to_string(regions) + " region(s) of the other " +
+                     std::to_string(filled.size() - num_cleared) + " (their parts outside the input" +
                      (frame && !same_input ? " made again in decompose's frame" : std::string()) + ": " +
-                     fmt("%.2f", std::chrono::duration<double>(std::chrono::steady_clock::now() - parts_start).count()) +
-                     " s)");
+                     fmt("%.2f", parts_seconds) + " s)");
     }
     // each block near a box only where it sticks out near it (its part
     // elsewhere in the region lies in the input: the same model)
@@ -648,7 +689,7 @@ ValidationReport validate_decomposition(const Mesh& input, const std::vector<Val
     std::vector<std::optional<std::vector<BoundingBox>>> to_cover;
     std::vector<std::size_t> measured_index;
     for (std::size_t k = 0; k < filled.size(); ++k) {
-      if (!errors[k].empty() || (frame && !frame->refused[filled[k]].empty())) continue;
+      if (!errors[k].empty() || (frame && !frame->refused[filled[k]].empty()) || cleared[k]) continue;
       to_measure.push_back(sticking[k]);
       to_cover.push_back(cover[k]);
       measured_index.push_back(k);
@@ -661,9 +702,8 @@ ValidationReport validate_decomposition(const Mesh& input, const std::vector<Val
                         if (progress) progress->update(d, total);
                       });
     for (std::size_t m = 0; m < measured_index.size(); ++m) dev[measured_index[m]] = got[m];
-    // Back to the exported blocks: stretch x D + the rounding (match_frame_blocks.h).
-    const double stretch = frame ? frame->stretch : 1.0;
-    const double rounding = frame ? frame->rounding() : 0.0;
+    for (std::size_t k = 0; k < filled.size(); ++k)
+      if (cleared[k]) dev[k] = {upper.blocks[k].to_input, upper.blocks[k].from_input, 0.0, {}};  // error included
     report.num_filled = filled.size();
     report.deviation_error = stretch * error + rounding;
     report.measured_in_frame = frame.has_value();
@@ -689,10 +729,16 @@ ValidationReport validate_decomposition(const Mesh& input, const std::vector<Val
                                 ", buries the input " + fmt("%.6g", from_input) + ", error bound " +
                                 fmt("%.3g", report.deviation_error) + ")");
     }
-    within.summary = std::to_string(filled.size()) + " block(s) sticking out; deviation " +
+    // Blocks cleared by the bound report the bound (its error included, see
+    // fill_deviation_upper_bound.h); the others what the exact measure gave.
+    within.summary = std::to_string(filled.size()) + " block(s) sticking out (" + std::to_string(num_cleared) +
+                     " within it by a bound over their parts' surfaces, " +
+                     std::to_string(filled.size() - num_cleared) + " measured in regions); deviation " +
+                     (num_cleared > 0 ? std::string("at most ") : std::string()) +
                      fmt("%.3g", std::max(report.deviation_to_input, report.deviation_from_input) /
                                      std::max(diagonal, 1e-300)) +
-                     " x diagonal (+- " + fmt("%.2g", report.deviation_error / std::max(diagonal, 1e-300)) +
+                     " x diagonal (" + (num_cleared > 0 ? std::string("bounds, their error included; ") : std::string()) +
+                     "measures +- " + fmt("%.2g", report.deviation_error / std::max(diagonal, 1e-300)) +
                      "), tolerance " + fmt("%.3g", options.tolerance / std::max(diagonal, 1e-300)) +
                      (frame ? "; measured in decompose's frame (rounding back " +
                                   fmt("%.2g", rounding / std::max(diagonal, 1e-300)) + " x diagonal)"

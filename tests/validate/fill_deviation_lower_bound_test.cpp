@@ -59,16 +59,7 @@ TEST(FillDeviationLowerBound, AFaceAgainstAnotherFillIsNotOnTheModelMade) {
 // (5, 5, 6) lies 4 inside F (the buried input: 4), while F's top over the
 // notch lies at most 2 from S (the notch's walls): the bound is 4.
 TEST(FillDeviationLowerBound, AFillThatBuriesTheInputIsBoundedByHowDeep) {
-  Mesh solid;
-  solid.vertices = {{0, 0, 0},  {10, 0, 0},  {10, 10, 0},  {0, 10, 0},  {0, 0, 10}, {10, 0, 10},
-                    {10, 10, 10}, {0, 10, 10}, {3, 3, 10}, {7, 3, 10}, {7, 7, 10}, {3, 7, 10},
-                    {3, 3, 6},  {7, 3, 6},   {7, 7, 6},    {3, 7, 6}};
-  solid.faces = {{0, 2, 1},   {0, 3, 2},   {0, 1, 5},   {0, 5, 4},   {1, 2, 6},   {1, 6, 5},
-                 {2, 3, 7},   {2, 7, 6},   {3, 0, 4},   {3, 4, 7},   {4, 5, 9},   {4, 9, 8},
-                 {5, 6, 10},  {5, 10, 9},  {6, 7, 11},  {6, 11, 10}, {7, 4, 8},   {7, 8, 11},
-                 // the notch's walls (facing into it) and its floor (+z)
-                 {8, 9, 13},  {8, 13, 12}, {9, 10, 14}, {9, 14, 13}, {10, 11, 15}, {10, 15, 14},
-                 {11, 8, 12}, {11, 12, 15}, {12, 13, 14}, {12, 14, 15}};
+  const Mesh solid = test::make_notched_cube();
   const Mesh fill = make_box_mesh(Vec3(1, 1, 2), Vec3(9, 9, 10));
   const double b = fill_deviation_lower_bounds(solid, {&fill}, {std::nullopt}, kInf)[0];
   EXPECT_DOUBLE_EQ(b, 4.0);

@@ -420,3 +420,45 @@ TEST(ValidateDecomposition, StaircaseContactNeedsNoBoolean) {
 
 }  // namespace
 }  // namespace subfab
+
+namespace subfab {
+namespace {
+
+// Check 10's first pass (fill_deviation_upper_bound.h): the cube [0, 10]^3
+// cut at z = 5, its top block 0.5 too tall. Within a tolerance of 1 the
+// bound over that block's part (0.5: its top above the input, and the input's
+// top under it) clears it, no region measured, on its coarse pass; within
+// 0.52 on its fine pass; within 0.3 the bound does not, the exact measure
+// runs and fails it at 0.5.
+TEST(ValidateDecomposition, ABlockSticking05OutIsBoundedOverItsPart) {
+  const Mesh cube = test::box_solid({0, 0, 0}, {10, 10, 10});
+  const std::vector<ValidationBlock> blocks = {up_block(test::box_solid({0, 0, 0}, {10, 10, 5})),
+                                               up_block(test::box_solid({0, 0, 5}, {10, 10, 10.5}))};
+  ValidationOptions o = fast_options();
+  o.tolerance = 1.0;
+  const ValidationReport within = validate_decomposition(cube, blocks, o);
+  ASSERT_EQ(within.checks.size(), 10u);
+  EXPECT_TRUE(check(within, 10).passed) << check(within, 10).summary;
+  EXPECT_EQ(within.num_filled, 1u);
+  EXPECT_EQ(within.num_bounded_by_parts, 1u);
+  // far below T, bounded within a quarter of it
+  EXPECT_GE(within.deviation_to_input, 0.5);
+  EXPECT_LE(within.deviation_to_input, 0.5 + 2 * 0.25 * o.tolerance);
+  EXPECT_GE(within.deviation_from_input, 0.5);
+  EXPECT_LE(within.deviation_from_input, 0.5 + 2 * 0.25 * o.tolerance);
+  // T = 0.52: the coarse bound (0.5 + 0.13) exceeds it, the fine one (0.5 + 0.0104) does not
+  o.tolerance = 0.52;
+  const ValidationReport close = validate_decomposition(cube, blocks, o);
+  EXPECT_TRUE(check(close, 10).passed) << check(close, 10).summary;
+  EXPECT_EQ(close.num_bounded_by_parts, 1u);
+  EXPECT_GE(close.deviation_to_input, 0.5);
+  EXPECT_LE(close.deviation_to_input, 0.5 + 2 * o.tolerance_error * o.tolerance);
+  o.tolerance = 0.3;
+  const ValidationReport beyond = validate_decomposition(cube, blocks, o);
+  EXPECT_FALSE(check(beyond, 10).passed);
+  EXPECT_EQ(beyond.num_bounded_by_parts, 0u);
+  EXPECT_NEAR(std::max(beyond.deviation_to_input, beyond.deviation_from_input), 0.5, o.tolerance_error * o.tolerance);
+}
+
+}  // namespace
+}  // namespace subfab

@@ -239,6 +239,11 @@ std::optional<std::vector<BoundingBox>> fill_columns(const Mesh& carved, const M
 //! an empty mesh.
 std::vector<BoundingBox> solid_columns(const Mesh& part, double merge_distance = 0.0);
 
+//! 16 ulps of the largest coordinate of the vertices `mesh`'s faces use: how
+//! far a mesh whose vertices were each rounded once from exact points lies
+//! from the exact one (the rounding slack of measure_fill(), see above).
+double rounding_slack(const Mesh& mesh);
+
 //! measure_fill() of many blocks at once: one parallel task per box (a big
 //! block has many; in each pass, boxes of a block closer than twice the pass's
 //! reach merged); a block whose `fills` entry is nullopt (fill_columns()

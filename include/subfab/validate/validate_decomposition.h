@@ -215,6 +215,8 @@ struct ValidationReport {
   double sliver_thickness = 0.0;    // check 9's threshold (model units)
   // check 10 (tolerance > 0): the deviation of the model made, model units
   std::size_t num_filled = 0;       // blocks that stick out of the input
+  std::size_t num_bounded_by_parts = 0;  // of those, cleared by the bound over their parts' surfaces
+                                         // (fill_deviation_upper_bound.h), not measured in regions
   double volume_sticking_out = 0.0; // volume of the blocks outside the input, summed (model units^3; check 4)
   double deviation_to_input = 0.0;  // how far the blocks stick out (max over the filled blocks)
   double deviation_from_input = 0.0;  // how deep the input surface lies under them
