@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <optional>
 #include <string>
@@ -15,9 +16,11 @@
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
 #include "subfab/decompose/finalize_blocks.h"
+#include "subfab/validate/fill_deviation_upper_bound.h"
 #include "subfab/validate/measure_fill_deviation.h"
 #include "subfab/validate/milled_shape.h"
 #include "subfab/validate/validate_decomposition.h"
+#include "validate/validate_booleans.h"
 
 namespace subfab {
 namespace {
@@ -192,13 +195,39 @@ std::optional<Candidate> evaluate(std::size_t i, std::size_t j, const State& s, 
     // The deviation first (it rejects most), then collisions (exact booleans).
     // Where neither block sticks out, the union lies in the solid and only
     // its fill can deviate (measure_fill(), local); else near the whole union.
-    const FillDeviationOptions fo{.reach = o.tolerance, .error = error, .max_faces = o.max_region_faces};
-    std::optional<std::vector<BoundingBox>> fill;
-    if (!s.filled[i] && !s.filled[j]) fill = fill_columns(*u, m, axis);
-    const FillDeviation dev = fill ? meter.measure_fill(m, others, *fill, fo) : meter.measure(m, others, fo);
-    if (!dev.failure.empty() || dev.bound() + moved > o.tolerance) {
-      why |= kDeviation;
-      continue;
+    // First the bound over the union's part outside the solid
+    // (fill_deviation_upper_bound.h: one exact difference, then distances
+    // over its faces); the exact measure only where it does not keep the
+    // union within the tolerance.
+    double bound = std::numeric_limits<double>::infinity();
+    if (worth_bounding(m, meter.solid())) {
+      try {
+        const detail::OutsidePart part = detail::outside_part(m, meter.solid());
+        if (part.mesh || part.boundary) {
+          std::vector<const Mesh*> all{&m};
+          all.insert(all.end(), others.begin(), others.end());
+          std::vector<FillPart> view(all.size());
+          view[0] = {part.mesh ? &*part.mesh : &*part.boundary, &part.on_input};
+          std::vector<char> which(all.size(), 0);
+          which[0] = 1;
+          bound = fill_deviation_upper_bounds(meter.solid(), all, view, {.error = error, .stop = o.tolerance}, which)
+                      .blocks[0]
+                      .bound();
+        }
+      } catch (const std::exception&) {
+        // no bound: measured below
+      }
+    }
+    if (!(bound + moved <= o.tolerance)) {
+      const FillDeviationOptions fo{.reach = o.tolerance, .error = error, .max_faces = o.max_region_faces};
+      std::optional<std::vector<BoundingBox>> fill;
+      if (!s.filled[i] && !s.filled[j]) fill = fill_columns(*u, m, axis);
+      const FillDeviation dev = fill ? meter.measure_fill(m, others, *fill, fo) : meter.measure(m, others, fo);
+      if (!dev.failure.empty() || dev.bound() + moved > o.tolerance) {
+        why |= kDeviation;
+        continue;
+      }
+      bound = dev.bound();
     }
     if (detail::overlaps_a_block(m, s.blocks, s.boxes, s.volumes, [&](std::size_t k) { return k == i || k == j; },
                                  o.collision_tolerance)) {
@@ -209,7 +238,7 @@ std::optional<Candidate> evaluate(std::size_t i, std::size_t j, const State& s, 
       why |= kDefect;
       continue;
     }
-    return Candidate{m, axis, true, dev.bound() + moved};
+    return Candidate{m, axis, true, bound + moved};
   }
   return std::nullopt;
 }

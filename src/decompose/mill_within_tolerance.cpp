@@ -13,6 +13,7 @@
 #include "subfab/core/parallel.h"
 #include "subfab/geometry/axis.h"
 #include "subfab/validate/fill_deviation_lower_bound.h"
+#include "subfab/validate/fill_deviation_upper_bound.h"
 #include "subfab/validate/measure_fill_deviation.h"
 #include "subfab/validate/milled_shape.h"
 #include "subfab/validate/validate_decomposition.h"
@@ -150,25 +151,64 @@ MillToleranceResult mill_within_tolerance(const Mesh& solid, std::vector<Block> 
     if (r.filled[i]) all_filled.push_back(&blocks[i].mesh);
   const double error = options.error_fraction * options.tolerance;
   const FillDeviationOptions fo{.reach = options.tolerance, .error = error, .max_faces = options.max_region_faces};
+  std::vector<char> known(n, 0);  // filled, passing, and its deviation known (options.measure)
+  for (std::size_t i = 0; i < n; ++i)
+    if (r.filled[i] && r.failures[i].empty() && options.measure && !(*options.measure)[i]) known[i] = 1;
+  // 3a. first the bound over each block's part outside the solid
+  //     (fill_deviation_upper_bound.h: an exact difference, then distances
+  //     over its faces, within the same error as the measure); a block it
+  //     keeps within the tolerance is not measured in regions.
+  std::vector<char> cleared(n, 0);
+  std::vector<double> cleared_bound(n, 0.0);
+  std::size_t num_cleared = 0;
+  {
+    std::vector<std::size_t> slot(n, n);  // block -> its index in all_filled
+    for (std::size_t i = 0, k = 0; i < n; ++i)
+      if (r.filled[i]) slot[i] = k++;
+    std::vector<std::size_t> ids;
+    for (std::size_t i = 0; i < n; ++i)
+      if (r.filled[i] && r.failures[i].empty() && !known[i] && worth_bounding(blocks[i].mesh, solid)) ids.push_back(i);
+    std::vector<std::optional<detail::OutsidePart>> parts(ids.size());
+    parallel_for(0, ids.size(), [&](std::size_t k) {
+      try {
+        parts[k] = detail::outside_part(blocks[ids[k]].mesh, solid);
+      } catch (const std::exception&) {
+        // no part: measured in regions
+      }
+    });
+    std::vector<FillPart> view(all_filled.size());
+    for (std::size_t k = 0; k < ids.size(); ++k)
+      if (parts[k] && (parts[k]->mesh || parts[k]->boundary))
+        view[slot[ids[k]]] = {parts[k]->mesh ? &*parts[k]->mesh : &*parts[k]->boundary, &parts[k]->on_input};
+    FillDeviationUpperBounds upper;
+    try {
+      upper = fill_deviation_upper_bounds(solid, all_filled, view, {.error = error, .stop = options.tolerance});
+    } catch (const std::exception&) {
+      upper.blocks.assign(all_filled.size(), {});
+    }
+    for (std::size_t i : ids)
+      if (upper.blocks[slot[i]].bound() <= options.tolerance) {
+        cleared[i] = 1;
+        cleared_bound[i] = upper.blocks[slot[i]].bound();
+        ++num_cleared;
+        ++r.num_bounded;
+      }
+  }
   std::vector<std::size_t> measured_ids;
   std::vector<const Mesh*> measured_blocks;
   std::vector<std::optional<std::vector<BoundingBox>>> measured_fills;
   std::size_t num_regions = 0;
-  std::vector<char> known(n, 0);  // filled, passing, and its deviation known (options.measure)
   for (std::size_t i = 0; i < n; ++i) {
-    if (!r.filled[i] || !r.failures[i].empty()) continue;
-    if (options.measure && !(*options.measure)[i]) {
-      known[i] = 1;
-      continue;
-    }
+    if (!r.filled[i] || !r.failures[i].empty() || known[i] || cleared[i]) continue;
     measured_ids.push_back(i);
     measured_blocks.push_back(&blocks[i].mesh);
     measured_fills.push_back(std::move(fill[i]));
     num_regions += measured_fills.back() ? measured_fills.back()->size() : 1;
   }
   if (progress)
-    progress->info("measuring the deviation in " + std::to_string(num_regions) + " region(s) of " +
-                   std::to_string(all_filled.size()) + " filled block(s)" +
+    progress->info(std::to_string(num_cleared) + " filled block(s) within the tolerance by the bound over their parts "
+                   "outside the input; measuring the deviation in " + std::to_string(num_regions) + " region(s) of " +
+                   std::to_string(measured_ids.size()) + " of " + std::to_string(all_filled.size()) + " filled block(s)" +
                    (options.measure ? " (" + std::to_string(std::count(known.begin(), known.end(), char{1})) +
                                           " known from before: nothing near them changed)"
                                     : std::string()));
@@ -181,6 +221,8 @@ MillToleranceResult mill_within_tolerance(const Mesh& solid, std::vector<Block> 
   for (std::size_t i = 0; i < n; ++i) {
     if (known[i]) {
       r.deviation[i] = (*options.known_deviation)[i];
+    } else if (cleared[i]) {
+      r.deviation[i] = cleared_bound[i];
     } else if (r.filled[i] && r.failures[i].empty()) {
       const FillDeviation& dev = deviation[i];
       if (!dev.failure.empty())

@@ -29,12 +29,16 @@ constexpr double kShrink = 1e-3;
 }  // namespace
 
 FillDeviationUpperBounds fill_deviation_upper_bounds(const Mesh& solid, const std::vector<const Mesh*>& filled,
-                                                     const std::vector<FillPart>& parts, double error, double stop,
+                                                     const std::vector<FillPart>& parts,
+                                                     const FillDeviationUpperBoundOptions& options,
                                                      const std::vector<char>& which) {
+  const double error = options.error, stop = options.stop;
   const std::size_t n = filled.size();
   if (parts.size() != n || (!which.empty() && which.size() != n))
     throw InvalidArgumentError("fill_deviation_upper_bounds: one part and one flag per filled block expected");
-  if (!(error > 0)) throw InvalidArgumentError("fill_deviation_upper_bounds: the error bound must be > 0");
+  if (!(error > 0) || !(options.coarse_fraction >= 0))
+    throw InvalidArgumentError(
+        "fill_deviation_upper_bounds: the error bound must be > 0 and the coarse fraction >= 0");
   for (const FillPart& p : parts)
     if (p.faces && (!p.on_input || p.on_input->size() != p.faces->faces.size()))
       throw InvalidArgumentError("fill_deviation_upper_bounds: one on-input flag per part face expected");
@@ -151,11 +155,9 @@ FillDeviationUpperBounds fill_deviation_upper_bounds(const Mesh& solid, const st
     if (p.faces) part_rounding = std::max(part_rounding, rounding_slack(*p.faces));
   std::once_flag solid_once;
 
-  // Two passes: first within a coarse error (a quarter of `stop`: CGAL's
-  // bounded-error distance refines a face lying just off a differently
-  // triangulated surface down to the error, hu's part 10 s at 2 % of T, 1.6 s
-  // at 25 %), then within `error` the blocks the first does not clear.
-  const double coarse = std::isfinite(stop) ? std::max(error, 0.25 * stop) : error;
+  // Two passes when asked (options.coarse_fraction): first within a coarse
+  // error, then within `error` the blocks the first does not clear.
+  const double coarse = std::isfinite(stop) ? std::max(error, options.coarse_fraction * stop) : error;
   const auto bound = [&](std::size_t k, double e) {
     // Sources: every face for the distance to the targets but the whole
     // targets (0); only the faces off ∂S for the distance to ∂S (the others
@@ -186,5 +188,7 @@ FillDeviationUpperBounds fill_deviation_upper_bounds(const Mesh& solid, const st
   });
   return out;
 }
+
+bool worth_bounding(const Mesh& block, const Mesh& solid) { return 2 * block.faces.size() <= solid.faces.size(); }
 
 }  // namespace subfab

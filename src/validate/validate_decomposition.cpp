@@ -653,7 +653,8 @@ ValidationReport validate_decomposition(const Mesh& input, const std::vector<Val
       if (!errors[k].empty() || (frame && !frame->refused[filled[k]].empty())) part_of[k] = {};
     FillDeviationUpperBounds upper;
     try {
-      upper = fill_deviation_upper_bounds(model, sticking, part_of, error, options.tolerance / stretch);
+      upper = fill_deviation_upper_bounds(model, sticking, part_of,
+                                          {.error = error, .stop = options.tolerance / stretch, .coarse_fraction = 0.25});
     } catch (const std::exception&) {
       upper.blocks.assign(filled.size(), {});  // no bound (CGAL refused a distance query): measure them all
     }

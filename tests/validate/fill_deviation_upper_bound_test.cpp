@@ -55,7 +55,7 @@ FillDeviationUpperBound bound_alone(const Mesh& solid, const Mesh& block, double
   if (!p.parts[0].mesh) return {};
   EXPECT_NEAR(flagged_area(*p.parts[0].mesh, p.parts[0].on_input, 1), on_input, 1e-12);
   EXPECT_NEAR(flagged_area(*p.parts[0].mesh, p.parts[0].on_input, 0), off_input, 1e-12);
-  return fill_deviation_upper_bounds(solid, {&block}, p.view, kError, kInf).blocks.at(0);
+  return fill_deviation_upper_bounds(solid, {&block}, p.view, {.error = kError}).blocks.at(0);
 }
 
 // S = [0, 10]^3; F = [2, 4]^2 x [5, 13] sticks out 3 above S's top. Its part
@@ -77,21 +77,24 @@ TEST(FillDeviationUpperBound, AColumnSticking3OutOfACubeIsBoundedBy3And1) {
     EXPECT_LE(alone.from_input, 1.0 + 2 * kError);
   }
   const Parts p(solid, {&column});
-  const FillDeviationUpperBounds b = fill_deviation_upper_bounds(solid, {&column}, p.view, kError, kInf);
+  const FillDeviationUpperBounds b = fill_deviation_upper_bounds(solid, {&column}, p.view, {.error = kError});
   ASSERT_EQ(b.blocks.size(), 1u);
   // Over the whole of ∂S (stop 0) as over the part's faces on it: the top's nearest points are on its rim.
-  const FillDeviationUpperBound whole = fill_deviation_upper_bounds(solid, {&column}, p.view, kError, 0.0).blocks[0];
+  const FillDeviationUpperBound whole =
+      fill_deviation_upper_bounds(solid, {&column}, p.view, {.error = kError, .stop = 0.0}).blocks[0];
   EXPECT_NEAR(whole.to_input, b.blocks[0].to_input, 2 * kError);
   EXPECT_GE(whole.to_input, 3.0);
   EXPECT_GT(b.target_faces, 0u);
   EXPECT_LT(b.target_faces, b.part_faces);  // not the bottom's
   // Not asked, or no part: not bounded.
-  EXPECT_EQ(fill_deviation_upper_bounds(solid, {&column}, p.view, kError, kInf, {0}).blocks[0].bound(),
+  EXPECT_EQ(fill_deviation_upper_bounds(solid, {&column}, p.view, {.error = kError}, {0}).blocks[0].bound(),
             std::numeric_limits<double>::infinity());
-  EXPECT_EQ(fill_deviation_upper_bounds(solid, {&column}, {FillPart{}}, kError, kInf).blocks[0].bound(),
+  EXPECT_EQ(fill_deviation_upper_bounds(solid, {&column}, {FillPart{}}, {.error = kError}).blocks[0].bound(),
             std::numeric_limits<double>::infinity());
-  EXPECT_THROW(fill_deviation_upper_bounds(solid, {&column}, {}, kError, kInf), InvalidArgumentError);
-  EXPECT_THROW(fill_deviation_upper_bounds(solid, {&column}, p.view, 0.0, kInf), InvalidArgumentError);
+  EXPECT_THROW(fill_deviation_upper_bounds(solid, {&column}, {}, {.error = kError}), InvalidArgumentError);
+  EXPECT_THROW(fill_deviation_upper_bounds(solid, {&column}, p.view, {.error = 0.0}), InvalidArgumentError);
+  EXPECT_THROW(fill_deviation_upper_bounds(solid, {&column}, p.view, {.error = kError, .coarse_fraction = -1}),
+               InvalidArgumentError);
 }
 
 // Two such blocks side by side, [2, 4] x [0, 8] and [4, 6] x [0, 8] in x, y:
@@ -104,7 +107,7 @@ TEST(FillDeviationUpperBound, AFaceAgainstAnotherBlockIsNotOnTheModelMade) {
   const Mesh left = make_box_mesh(Vec3(2, 0, 5), Vec3(4, 8, 13));
   const Mesh right = make_box_mesh(Vec3(4, 0, 5), Vec3(6, 8, 13));
   const Parts p(solid, {&left, &right});
-  const FillDeviationUpperBounds b = fill_deviation_upper_bounds(solid, {&left, &right}, p.view, kError, kInf);
+  const FillDeviationUpperBounds b = fill_deviation_upper_bounds(solid, {&left, &right}, p.view, {.error = kError});
   for (const FillDeviationUpperBound& x : b.blocks) {
     EXPECT_GE(x.to_input, 3.0);
     EXPECT_LE(x.to_input, 3.0 + 2 * kError);
@@ -113,7 +116,8 @@ TEST(FillDeviationUpperBound, AFaceAgainstAnotherBlockIsNotOnTheModelMade) {
   }
   // Alone, each is bounded by its own half width.
   const Parts alone(solid, {&left});
-  EXPECT_LE(fill_deviation_upper_bounds(solid, {&left}, alone.view, kError, kInf).blocks[0].from_input, 1.0 + 2 * kError);
+  EXPECT_LE(fill_deviation_upper_bounds(solid, {&left}, alone.view, {.error = kError}).blocks[0].from_input,
+            1.0 + 2 * kError);
 }
 
 // A milled shape filling a notch: S = [0, 10]^3 with x, y in [3, 7], z in

@@ -18,7 +18,11 @@
 //!      value + error bound <= T. Only where the milled shape adds material
 //!      to the carved block can it deviate: the measure runs in the boxes
 //!      fill_columns() gives (one parallel task per box), near the whole
-//!      block only when those cannot be computed.
+//!      block only when those cannot be computed. Before it, a sampled lower
+//!      bound fails a block for sure (fill_deviation_lower_bound.h) and an
+//!      upper bound over the block's part outside the input keeps it for
+//!      sure (fill_deviation_upper_bound.h: one exact difference, distances
+//!      within the same error); only the blocks neither decides are measured.
 //! A block that fails any of them is reported; the caller takes the
 //! allowances back there and decomposes again (decompose()).
 #pragma once
@@ -59,6 +63,9 @@ struct MillToleranceResult {
   std::vector<double> deviation;      // per block: the measured bound (measure + error), model units; 0 when exact
   double max_deviation = 0.0;         // over the blocks that pass, model units
   bool stopped = false;               // stop_at_first_failure stopped before the exact measure
+  std::size_t num_bounded = 0;        // filled blocks kept within the tolerance by the bound over their parts
+                                      // outside the solid (fill_deviation_upper_bound.h): not measured in
+                                      // regions, their deviation is that bound
   std::size_t num_failed() const;
 };
 
