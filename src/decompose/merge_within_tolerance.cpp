@@ -200,23 +200,21 @@ std::optional<Candidate> evaluate(std::size_t i, std::size_t j, const State& s, 
     // over its faces); the exact measure only where it does not keep the
     // union within the tolerance.
     double bound = std::numeric_limits<double>::infinity();
-    if (worth_bounding(m, meter.solid())) {
-      try {
-        const detail::OutsidePart part = detail::outside_part(m, meter.solid());
-        if (part.mesh || part.boundary) {
-          std::vector<const Mesh*> all{&m};
-          all.insert(all.end(), others.begin(), others.end());
-          std::vector<FillPart> view(all.size());
-          view[0] = {part.mesh ? &*part.mesh : &*part.boundary, &part.on_input};
-          std::vector<char> which(all.size(), 0);
-          which[0] = 1;
-          bound = fill_deviation_upper_bounds(meter.solid(), all, view, {.error = error, .stop = o.tolerance}, which)
-                      .blocks[0]
-                      .bound();
-        }
-      } catch (const std::exception&) {
-        // no bound: measured below
+    try {
+      const detail::OutsidePart part = detail::outside_part(m, meter.solid());
+      if (part.mesh || part.boundary) {
+        std::vector<const Mesh*> all{&m};
+        all.insert(all.end(), others.begin(), others.end());
+        std::vector<FillPart> view(all.size());
+        view[0] = {part.mesh ? &*part.mesh : &*part.boundary, &part.on_input};
+        std::vector<char> which(all.size(), 0);
+        which[0] = 1;
+        bound = fill_deviation_upper_bounds(meter.solid(), all, view, {.error = error, .stop = o.tolerance}, which)
+                    .blocks[0]
+                    .bound();
       }
+    } catch (const std::exception&) {
+      // no bound: measured below
     }
     if (!(bound + moved <= o.tolerance)) {
       const FillDeviationOptions fo{.reach = o.tolerance, .error = error, .max_faces = o.max_region_faces};

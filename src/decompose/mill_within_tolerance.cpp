@@ -167,7 +167,11 @@ MillToleranceResult mill_within_tolerance(const Mesh& solid, std::vector<Block> 
       if (r.filled[i]) slot[i] = k++;
     std::vector<std::size_t> ids;
     for (std::size_t i = 0; i < n; ++i)
-      if (r.filled[i] && r.failures[i].empty() && !known[i] && worth_bounding(blocks[i].mesh, solid)) ids.push_back(i);
+      if (r.filled[i] && r.failures[i].empty() && !known[i]) ids.push_back(i);
+    // The differences run one per block in parallel; a lone block's runs on
+    // one core while its regions' measure runs on all (hu at 1.4e-3, one
+    // block: difference 11 s and distances 10 s against regions 9 s).
+    if (ids.size() < 2) ids.clear();
     std::vector<std::optional<detail::OutsidePart>> parts(ids.size());
     parallel_for(0, ids.size(), [&](std::size_t k) {
       try {

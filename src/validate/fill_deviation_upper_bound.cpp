@@ -189,6 +189,4 @@ FillDeviationUpperBounds fill_deviation_upper_bounds(const Mesh& solid, const st
   return out;
 }
 
-bool worth_bounding(const Mesh& block, const Mesh& solid) { return 2 * block.faces.size() <= solid.faces.size(); }
-
 }  // namespace subfab

@@ -34,8 +34,25 @@ TEST(MillWithinTolerance, TheGroovesFillIsMeasuredAgainstTheTolerance) {
   EXPECT_TRUE(wide.failures[0].empty()) << wide.failures[0];
   EXPECT_GE(wide.deviation[0], 1.0 - 1e-9);
   EXPECT_LE(wide.deviation[0], 1.0 + 2 * o.error_fraction * o.tolerance);
+  // Two such boxes side by side, each one block: both bounded over their parts, not measured.
+  Mesh pair = box;
+  for (const Vec3& v : box.vertices) pair.vertices.push_back(v + Vec3(100, 0, 0));
+  for (Triangle t : box.faces) {
+    for (int& v : t) v += static_cast<int>(box.vertices.size());
+    pair.faces.push_back(t);
+  }
+  Mesh right = box;
+  for (Vec3& v : right.vertices) v += Vec3(100, 0, 0);
+  const MillToleranceResult two =
+      mill_within_tolerance(pair, {Block{box, Axis::PosZ, 0}, Block{right, Axis::PosZ, 1}}, o);
+  EXPECT_EQ(two.num_failed(), 0u);
+  EXPECT_EQ(two.num_bounded, 2u);
+  for (double d : two.deviation) {
+    EXPECT_GE(d, 1.0 - 1e-9);
+    EXPECT_LE(d, 1.0 + 2 * o.error_fraction * o.tolerance);
+  }
   EXPECT_EQ(wide.max_deviation, wide.deviation[0]);
-  EXPECT_EQ(wide.num_bounded, 1u);  // kept by the bound over its part outside the box, not measured in regions
+  EXPECT_EQ(wide.num_bounded, 0u);  // a lone block is measured in regions, on every core (not bounded first)
   EXPECT_TRUE(is_height_field(wide.blocks[0].mesh, axis_direction(Axis::PosZ)));
   o.tolerance = 0.9;
   const MillToleranceResult narrow = mill_within_tolerance(box, whole_box(box), o);

@@ -22,7 +22,8 @@
 //!      bound fails a block for sure (fill_deviation_lower_bound.h) and an
 //!      upper bound over the block's part outside the input keeps it for
 //!      sure (fill_deviation_upper_bound.h: one exact difference, distances
-//!      within the same error); only the blocks neither decides are measured.
+//!      within the same error; not for a lone filled block, whose difference
+//!      would run on one core); only the blocks neither decides are measured.
 //! A block that fails any of them is reported; the caller takes the
 //! allowances back there and decomposes again (decompose()).
 #pragma once

@@ -95,10 +95,4 @@ FillDeviationUpperBounds fill_deviation_upper_bounds(const Mesh& solid, const st
                                                      const FillDeviationUpperBoundOptions& options,
                                                      const std::vector<char>& which = {});
 
-//! Whether bounding `block` this way is worth its exact difference with the
-//! solid: not when the block has more than half as many faces as the solid
-//! (hu at 1.4e-3, one block of the whole statue: the difference alone takes
-//! 11 s, the region measure of its fill 9 s; decompose's stages then measure).
-bool worth_bounding(const Mesh& block, const Mesh& solid);
-
 }  // namespace subfab
