@@ -978,9 +978,6 @@ std::size_t recarve_slivers(const Mesh& solid, const Mesh& input, const Decompos
   return removed;
 }
 
-//! Adds the time the stages 2-6 spent between `before` and `after` (field,
-//! grow, cover, resolve, carve) to `t`: a result kept from two paths counts
-//! both.
 //! The block count a carve reaches when it has far more blocks than `best`
 //! (DecomposeOptions::tolerance_exact_margin `margin` >= 0): max(best + 2,
 //! ceil((1 + margin) best)). Rounds under allowances against the exact
@@ -990,6 +987,9 @@ std::size_t far_more_blocks(std::size_t best, double margin) {
   return static_cast<std::size_t>(std::max(b + 2, std::ceil((1 + margin) * b)));
 }
 
+//! Adds the time the stages 2-6 spent between `before` and `after` (field,
+//! grow, cover, resolve, carve) to `t`: a result kept from two paths counts
+//! both.
 void add_stage_times(DecomposeTimings& t, const DecomposeTimings& after, const DecomposeTimings& before) {
   t.field += after.field - before.field;
   t.grow += after.grow - before.grow;

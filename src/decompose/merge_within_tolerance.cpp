@@ -202,11 +202,11 @@ std::optional<Candidate> evaluate(std::size_t i, std::size_t j, const State& s, 
     double bound = std::numeric_limits<double>::infinity();
     try {
       const detail::OutsidePart part = detail::outside_part(m, meter.solid());
-      if (part.mesh || part.boundary) {
+      if (part.faces()) {
         std::vector<const Mesh*> all{&m};
         all.insert(all.end(), others.begin(), others.end());
         std::vector<FillPart> view(all.size());
-        view[0] = {part.mesh ? &*part.mesh : &*part.boundary, &part.on_input};
+        view[0] = {part.faces(), &part.on_input};
         std::vector<char> which(all.size(), 0);
         which[0] = 1;
         bound = fill_deviation_upper_bounds(meter.solid(), all, view, {.error = error, .stop = o.tolerance}, which)

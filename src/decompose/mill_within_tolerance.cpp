@@ -160,7 +160,6 @@ MillToleranceResult mill_within_tolerance(const Mesh& solid, std::vector<Block> 
   //     keeps within the tolerance is not measured in regions.
   std::vector<char> cleared(n, 0);
   std::vector<double> cleared_bound(n, 0.0);
-  std::size_t num_cleared = 0;
   {
     std::vector<std::size_t> slot(n, n);  // block -> its index in all_filled
     for (std::size_t i = 0, k = 0; i < n; ++i)
@@ -182,8 +181,7 @@ MillToleranceResult mill_within_tolerance(const Mesh& solid, std::vector<Block> 
     });
     std::vector<FillPart> view(all_filled.size());
     for (std::size_t k = 0; k < ids.size(); ++k)
-      if (parts[k] && (parts[k]->mesh || parts[k]->boundary))
-        view[slot[ids[k]]] = {parts[k]->mesh ? &*parts[k]->mesh : &*parts[k]->boundary, &parts[k]->on_input};
+      if (parts[k]) view[slot[ids[k]]] = {parts[k]->faces(), &parts[k]->on_input};
     FillDeviationUpperBounds upper;
     try {
       upper = fill_deviation_upper_bounds(solid, all_filled, view, {.error = error, .stop = options.tolerance});
@@ -194,7 +192,6 @@ MillToleranceResult mill_within_tolerance(const Mesh& solid, std::vector<Block> 
       if (upper.blocks[slot[i]].bound() <= options.tolerance) {
         cleared[i] = 1;
         cleared_bound[i] = upper.blocks[slot[i]].bound();
-        ++num_cleared;
         ++r.num_bounded;
       }
   }
@@ -210,7 +207,7 @@ MillToleranceResult mill_within_tolerance(const Mesh& solid, std::vector<Block> 
     num_regions += measured_fills.back() ? measured_fills.back()->size() : 1;
   }
   if (progress)
-    progress->info(std::to_string(num_cleared) + " filled block(s) within the tolerance by the bound over their parts "
+    progress->info(std::to_string(r.num_bounded) + " filled block(s) within the tolerance by the bound over their parts "
                    "outside the input; measuring the deviation in " + std::to_string(num_regions) + " region(s) of " +
                    std::to_string(measured_ids.size()) + " of " + std::to_string(all_filled.size()) + " filled block(s)" +
                    (options.measure ? " (" + std::to_string(std::count(known.begin(), known.end(), char{1})) +

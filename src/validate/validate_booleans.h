@@ -38,6 +38,8 @@ struct OutsidePart {
   //! faces before their rounding (a corefined face lies on the solid's
   //! surface iff its centroid does). fill_deviation_upper_bound.h needs it.
   std::vector<char> on_input;
+  //! The part's faces: `mesh`, else `boundary`, else nullptr.
+  const Mesh* faces() const { return mesh ? &*mesh : boundary ? &*boundary : nullptr; }
 };
 
 //! volume_outside() that also gives the part outside: block \\ solid by

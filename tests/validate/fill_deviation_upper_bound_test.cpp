@@ -28,8 +28,7 @@ struct Parts {
   Parts(const Mesh& solid, const std::vector<const Mesh*>& blocks) {
     for (const Mesh* b : blocks) parts.push_back(detail::outside_part(*b, solid));
     for (const detail::OutsidePart& p : parts) {
-      const Mesh* faces = p.mesh ? &*p.mesh : p.boundary ? &*p.boundary : nullptr;
-      view.push_back({faces, faces ? &p.on_input : nullptr});
+      view.push_back({p.faces(), p.faces() ? &p.on_input : nullptr});
     }
   }
 };
