@@ -273,7 +273,8 @@ int run_decompose(const DecomposeArgs& args) {
           << " deg (every face leaning at most that far past vertical allowed, then milled and measured)";
     msg << "; slivers (thinner than " << result.sliver_thickness / diagonal
         << " x diagonal where the model is thicker): " << result.num_slivers_merged << " merged, "
-        << result.num_slivers_dropped << " dropped, " << result.num_slivers_recarved
+        << result.num_slivers_dropped << " dropped, " << result.num_slivers_thickened << " thickened, "
+        << result.num_slivers_recarved
         << " decomposed again with a neighbour, " << result.num_slivers << " left";
     if (!result.tolerance_fallback.empty()) {
       const bool slivers = result.tolerance_fallback.find("(slivers)") != std::string::npos;
@@ -329,6 +330,7 @@ int run_decompose(const DecomposeArgs& args) {
     j["num_slivers"] = result.num_slivers;
     j["num_slivers_merged"] = result.num_slivers_merged;
     j["num_slivers_dropped"] = result.num_slivers_dropped;
+    j["num_slivers_thickened"] = result.num_slivers_thickened;
     j["num_slivers_recarved"] = result.num_slivers_recarved;
     j["timings_s"] = {{"orient", t.orient}, {"repair", t.repair},   {"field", t.field}, {"grow", t.grow},
                       {"cover", t.cover},   {"resolve", t.resolve}, {"carve", t.carve}, {"tolerance", t.tolerance}, {"total", t.total}};

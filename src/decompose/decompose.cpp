@@ -1506,6 +1506,7 @@ DecomposeResult decompose_once(const Mesh& input, const DecomposeOptions& option
       result.num_slivers = sl.num_left;
       result.num_slivers_merged = sl.num_merged;
       result.num_slivers_dropped = sl.num_dropped;
+      result.num_slivers_thickened = sl.num_thickened;
       // 9c. a sliver left: decomposed again together with a neighbour,
       //     exactly (nothing deviates: at T = 0 too)
       if (sl.num_left > 0) {
@@ -1532,7 +1533,7 @@ DecomposeResult decompose_once(const Mesh& input, const DecomposeOptions& option
     std::vector<Block> current = result.blocks;
     std::vector<char> current_filled;  // empty: no block sticks out (exact blocks)
     double bound = 0.0;
-    std::size_t merged = 0, dropped = 0, slivers = result.num_slivers;
+    std::size_t merged = 0, dropped = 0, thickened = result.num_slivers_thickened, slivers = result.num_slivers;
     for (double f : ladder) {
       const double tolerance = f * diagonal;
       SliverRemovalOptions so = sliver_options(tolerance);
@@ -1547,6 +1548,7 @@ DecomposeResult decompose_once(const Mesh& input, const DecomposeOptions& option
       bound = std::max(bound, sl.max_deviation);
       merged += sl.num_merged;
       dropped += sl.num_dropped;
+      thickened += sl.num_thickened;
       slivers = sl.num_left;
       current = std::move(sl.blocks);
       if (!sl.filled.empty()) current_filled = std::move(sl.filled);
@@ -1560,6 +1562,7 @@ DecomposeResult decompose_once(const Mesh& input, const DecomposeOptions& option
       within.num_slivers = 0;
       within.num_slivers_merged = merged;
       within.num_slivers_dropped = dropped;
+      within.num_slivers_thickened = thickened;
       within.timings.tolerance += seconds_since(tt);
       *slivers_within = std::move(within);
       break;
@@ -1659,7 +1662,8 @@ DecomposeResult decompose(const Mesh& input, const DecomposeOptions& options) {
     if (options.progress && in_place_blocks > 0 && in_place_blocks == chosen->blocks.size())
       options.progress->warn("the exact blocks are kept, their slivers removed within the fallback tolerance (" +
                              std::to_string(chosen->num_slivers_dropped) + " dropped, " +
-                             std::to_string(chosen->num_slivers_merged) + " merged)");
+                             std::to_string(chosen->num_slivers_merged) + " merged, " +
+                             std::to_string(chosen->num_slivers_thickened) + " thickened)");
     chosen->tolerance_fallback = why;
     chosen->timings.total = seconds_since(start);
     return std::move(*chosen);

@@ -248,6 +248,7 @@ std::string decomposition_json(const Mesh& input, const DecomposeResult& result,
                     {"num_slivers", result.num_slivers},
                     {"num_slivers_merged", result.num_slivers_merged},
                     {"num_slivers_dropped", result.num_slivers_dropped},
+                    {"num_slivers_thickened", result.num_slivers_thickened},
                     {"num_slivers_recarved", result.num_slivers_recarved},
                     {"deviation_bound", result.deviation_bound},
                     {"deviation_bound_fraction", diagonal > 0 ? result.deviation_bound / diagonal : 0.0}};

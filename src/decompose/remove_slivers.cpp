@@ -2,8 +2,11 @@
 #include "subfab/decompose/remove_slivers.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/connected_components.h>
+#include <CGAL/Polygon_mesh_processing/corefinement.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -20,7 +23,9 @@
 #include "geometry/surface_deviation.h"
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
+#include "subfab/decompose/finalize_blocks.h"
 #include "subfab/decompose/merge_within_tolerance.h"
+#include "subfab/validate/block_thickness.h"
 #include "subfab/validate/find_slivers.h"
 #include "subfab/validate/milled_shape.h"
 #include "subfab/validate/validate_decomposition.h"
@@ -271,6 +276,311 @@ void split_slivers(const Mesh& solid, SliverRemovalResult& r, const SliverRemova
   }
 }
 
+//! A sliver's thickening (remove_slivers.h, 4.): the blocks that replace
+//! the sliver and the neighbours it took material from.
+struct Thickening {
+  std::vector<std::size_t> replaced;  // the sliver first, then the neighbours
+  std::vector<Block> blocks;          // the thickened sliver first, then the neighbours' pieces
+  std::vector<char> filled;           // per new block (when the caller tracks them)
+  std::vector<std::size_t> pieces;    // per replaced block: how many of `blocks` are its (1 for the sliver)
+  double moved = 0.0;                 // how far export's cleanup of a rounded piece may have moved a vertex
+};
+
+//! Does `mesh` have a face in the plane x_k = c (exactly)?
+bool has_face_in_plane(const Mesh& mesh, int k, double c) {
+  for (const Triangle& t : mesh.faces)
+    if (mesh.vertices[static_cast<std::size_t>(t[0])][k] == c && mesh.vertices[static_cast<std::size_t>(t[1])][k] == c &&
+        mesh.vertices[static_cast<std::size_t>(t[2])][k] == c)
+      return true;
+  return false;
+}
+
+//! `mesh` (no two vertices at one exact point) rounded to doubles; when
+//! that leaves degenerate or flipped faces (thin triangles where the
+//! corefinement cut a face near a region's plane), export's cleanup along
+//! `direction` (clean_rounded_block(), 1e-10 x the scale; `*moved` raised to
+//! that tolerance). Nullopt unless the result is a closed solid without
+//! zero-area faces. Runs on the heap (callable inside an arena).
+std::optional<Mesh> rounded_solid(const detail::ExactMesh& mesh, const Vec3& direction, double* moved) {
+  if (mesh.number_of_faces() == 0 || detail::has_coincident_vertices(mesh)) return std::nullopt;
+  detail::SuspendArena heap;
+  detail::RoundingReport rounding;
+  Mesh m = detail::to_double(mesh, &rounding);
+  if (rounding.num_degenerate_faces + rounding.num_flipped_faces > 0) {
+    const FinalizeOptions fo;
+    const double tolerance = fo.relative_tolerance * rounding_scale(m);
+    try {
+      clean_rounded_block(m, direction, tolerance, fo);
+    } catch (const std::exception&) {
+      return std::nullopt;
+    }
+    if (m.faces.empty() || !check_closed_solid(m).ok() || detail::count_degenerate_faces(m) > 0) return std::nullopt;
+    *moved = std::max(*moved, tolerance);
+  }
+  return m;
+}
+
+//! The axis `mesh` is an exact height field along within the limits,
+//! `preferred` first, then the others in kAllAxes order; nullopt when none.
+std::optional<Axis> block_axis(const Mesh& mesh, Axis preferred, const SliverRemovalOptions& options) {
+  if (!check_closed_solid(mesh).ok() || detail::count_degenerate_faces(mesh) > 0) return std::nullopt;
+  const BoundingBox box = bounding_box(mesh);
+  std::vector<Axis> order{preferred};
+  for (Axis a : kAllAxes)
+    if (a != preferred) order.push_back(a);
+  for (Axis a : order) {
+    if (!detail::within_limits(box, a, options.max_height, options.machine_size)) continue;
+    try {
+      if (milled_shape(mesh, axis_direction(a)).is_block) return a;
+    } catch (const std::exception&) {
+    }
+  }
+  return std::nullopt;
+}
+
+//! One thickening of sliver `s` (remove_slivers.h, 4.): the neighbours
+//! `near` give the sliver their material inside `regions[j]` (one box per
+//! neighbour), and, when `interior` (the index of `solid`) is set, the
+//! model inside `slab` joins it too, exactly; the sliver keeps its axis when it can (else the
+//! first axis it is a height field along), each neighbour's remaining
+//! pieces keep theirs. Nullopt unless every new block is a clean exact
+//! height field within the limits, there are no more of them than before,
+//! none is a sliver and each passes the export's check.
+std::optional<Thickening> try_thickening(const Mesh& solid, const std::vector<Block>& blocks,
+                                         const std::vector<char>& filled, std::size_t s,
+                                         const std::vector<std::size_t>& near, const std::vector<Box3>& regions,
+                                         const detail::SolidIndex* interior, const Box3& slab,
+                                         const SliverRemovalOptions& options) {
+  namespace PMP = CGAL::Polygon_mesh_processing;
+  std::optional<Mesh> grown;
+  std::vector<std::vector<Mesh>> rest(near.size());
+  double moved = 0.0;
+  bool ok = true;
+  detail::warm_up_exact_booleans();
+  const std::string error = detail::run_in_arena([&] {
+    detail::ExactMesh sliver = detail::to_exact(blocks[s].mesh);
+    if (interior)  // the model in the slab: what no block holds there joins the sliver
+      for (detail::ExactMesh& piece : detail::clip_solid_to_box(solid, *interior, slab)) {
+        detail::ExactMesh u;
+        if (!PMP::corefine_and_compute_union(sliver, piece, u)) {
+          ok = false;
+          return;
+        }
+        sliver = std::move(u);
+      }
+    for (std::size_t j = 0; j < near.size() && ok; ++j) {
+      detail::ExactMesh a = detail::to_exact(blocks[near[j]].mesh), b = detail::box_mesh(regions[j]), inside, outside;
+      detail::ExactMesh a2 = a, b2 = b;
+      if (!PMP::corefine_and_compute_intersection(a, b, inside) ||
+          !PMP::corefine_and_compute_difference(a2, b2, outside)) {
+        ok = false;
+        return;
+      }
+      if (inside.number_of_faces() > 0) {
+        detail::ExactMesh u;
+        if (!PMP::corefine_and_compute_union(sliver, inside, u)) {
+          ok = false;
+          return;
+        }
+        sliver = std::move(u);
+      }
+      std::vector<detail::ExactMesh> pieces;
+      if (outside.number_of_faces() > 0) PMP::split_connected_components(outside, pieces);
+      for (const detail::ExactMesh& p : pieces) {
+        std::optional<Mesh> m = rounded_solid(p, axis_direction(blocks[near[j]].axis), &moved);
+        if (!m) {
+          ok = false;
+          return;
+        }
+        detail::SuspendArena heap;
+        rest[j].push_back(std::move(*m));
+      }
+    }
+    if (!ok) return;
+    auto fcc = sliver.add_property_map<detail::FaceIndex, std::size_t>("f:cc", 0).first;
+    if (PMP::connected_components(sliver, fcc) != 1) {
+      ok = false;
+      return;
+    }
+    std::optional<Mesh> m = rounded_solid(sliver, axis_direction(blocks[s].axis), &moved);
+    detail::SuspendArena heap;
+    grown = std::move(m);
+  });
+  if (!error.empty() || !ok || !grown) return std::nullopt;
+  std::size_t count = 1;
+  for (const auto& r : rest) count += r.size();
+  if (count > 1 + near.size()) return std::nullopt;
+  Thickening t;
+  t.moved = moved;
+  t.replaced.push_back(s);
+  t.replaced.insert(t.replaced.end(), near.begin(), near.end());
+  t.pieces.push_back(1);
+  for (const auto& r : rest) t.pieces.push_back(r.size());
+  const std::optional<Axis> axis = block_axis(*grown, blocks[s].axis, options);
+  if (!axis) return std::nullopt;
+  const bool track = !filled.empty();
+  char any_filled = track ? filled[s] : 0;
+  for (std::size_t j : near) any_filled = static_cast<char>(any_filled || (track && filled[j]));
+  t.blocks.push_back(Block{std::move(*grown), *axis, blocks[s].source_box});
+  if (track) t.filled.push_back(any_filled);  // it may hold what a neighbour's milled shape added
+  for (std::size_t j = 0; j < near.size(); ++j)
+    for (Mesh& m : rest[j]) {
+      const Block& n = blocks[near[j]];
+      if (!check_closed_solid(m).ok() || detail::count_degenerate_faces(m) > 0) return std::nullopt;
+      try {
+        if (!milled_shape(m, axis_direction(n.axis)).is_block) return std::nullopt;
+      } catch (const std::exception&) {
+        return std::nullopt;
+      }
+      t.blocks.push_back(Block{std::move(m), n.axis, n.source_box});
+      if (track) t.filled.push_back(filled[near[j]]);
+    }
+  const std::vector<char> thin = sliver_flags(solid, t.blocks, options.min_thickness);
+  if (std::any_of(thin.begin(), thin.end(), [](char c) { return c != 0; })) return std::nullopt;
+  if (options.block_defect)
+    for (const Block& b : t.blocks)
+      if (!options.block_defect(b).empty()) return std::nullopt;
+  return t;
+}
+
+//! Stage 4 of remove_slivers(): the thickening of each sliver left (see
+//! remove_slivers.h). Per sliver (in block order), along each frame axis
+//! (the thinnest first: a rod gets thicker along one axis from a slab
+//! along another), across each of
+//! its two sides there that is a cut plane (a face of it lies in the plane
+//! x_k = c of its box side), with depths delta = max(1.5 (m - t), m / 4), m
+//! and 2m (m = min_thickness, t its mean chord along k): the slab beyond
+//! that side over the sliver's footprint (its box across k) is taken from
+//! every block whose box interior meets it, either as it is or, for a
+//! neighbour milled across k, open towards the neighbour's tool side, or
+//! through its whole extent along its milling axis (so that the pocket left
+//! in it has no wall over its own material); then with the model in the
+//! slab that no block holds (the interior may stay empty; also when no block
+//! meets the slab). The first thickening try_thickening() accepts is kept. The
+//! blocks make up the same solid as before, with at most some of the
+//! model's interior added (the material moves between blocks exactly, then
+//! is rounded once, cleaned as export cleans a block where that leaves
+//! zero-area faces): nothing deviates but for that cleanup (1e-10 x scale).
+void thicken_slivers(const Mesh& solid, SliverRemovalResult& r, const SliverRemovalOptions& options) {
+  std::vector<char> flags = sliver_flags(solid, r.blocks, options.min_thickness);
+  if (std::none_of(flags.begin(), flags.end(), [](char c) { return c != 0; })) return;
+  const detail::SolidIndex index(solid);
+  const double m = options.min_thickness;
+  for (std::size_t s = 0; s < r.blocks.size(); ++s) {
+    if (!flags[s]) continue;
+    const Block& sliver = r.blocks[s];
+    const BlockThickness th = block_thickness(sliver.mesh);
+    std::vector<int> axes;
+    for (int k = 0; k < 3; ++k) axes.push_back(k);  // a rod gets thicker along one axis by a slab along another
+    std::stable_sort(axes.begin(), axes.end(), [&](int a, int b) {
+      return th.along[static_cast<std::size_t>(a)] < th.along[static_cast<std::size_t>(b)];
+    });
+    const std::vector<BoundingBox> boxes = detail::block_boxes(r.blocks);
+    const BoundingBox& box = boxes[s];
+    std::optional<Thickening> done;
+    for (int k : axes) {
+      const double t = th.along[static_cast<std::size_t>(k)];
+      std::vector<double> depths{std::max(1.5 * (m - t), 0.25 * m), m, 2.0 * m};
+      std::sort(depths.begin(), depths.end());
+      depths.erase(std::unique(depths.begin(), depths.end()), depths.end());
+      for (int side = 0; side < 2 && !done; ++side) {
+        const double c = side == 0 ? box.min[k] : box.max[k];
+        if (!has_face_in_plane(sliver.mesh, k, c)) continue;  // the input surface: nothing beyond it to take
+        for (double delta : depths) {
+          Box3 slab{box.min, box.max};
+          if (side == 0) {
+            slab.min[k] = c - delta;
+            slab.max[k] = c;
+          } else {
+            slab.min[k] = c;
+            slab.max[k] = c + delta;
+          }
+          const BoundingBox slab_box{slab.min, slab.max};
+          std::vector<std::size_t> near;
+          for (std::size_t j = 0; j < r.blocks.size(); ++j)
+            if (j != s && detail::interiors_meet(boxes[j], slab_box)) near.push_back(j);
+          // (through, interior): through 0, the slab over the footprint; 1,
+          // open towards each neighbour's tool side; 2, through each
+          // neighbour along its axis; interior: with the model's interior in
+          // the slab that no block holds
+          static constexpr std::array<std::pair<int, bool>, 5> kVariants{
+              {{0, false}, {1, false}, {2, false}, {0, true}, {1, true}}};
+          for (const auto& [through, interior] : kVariants) {
+            if (done) break;
+            if (!interior && near.empty()) continue;
+            std::vector<Box3> regions;
+            bool any_through = false;
+            for (std::size_t j : near) {
+              Box3 region = slab;
+              const int d = axis_dimension(r.blocks[j].axis);
+              if (through > 0 && d != k) {
+                const double pad = std::max(1.0, boxes[j].diagonal());
+                if (through == 2 || axis_sign(r.blocks[j].axis) < 0)
+                  region.min[d] = std::min(region.min[d], boxes[j].min[d] - pad);
+                if (through == 2 || axis_sign(r.blocks[j].axis) > 0)
+                  region.max[d] = std::max(region.max[d], boxes[j].max[d] + pad);
+                any_through = true;
+              }
+              regions.push_back(region);
+            }
+            if (through > 0 && !any_through) continue;
+            done = try_thickening(solid, r.blocks, r.filled, s, near, regions, interior ? &index : nullptr, slab,
+                                  options);
+          }
+          if (done) break;
+        }
+      }
+      if (done) break;
+    }
+    if (!done) continue;
+    if (options.progress) {
+      std::string names;
+      for (std::size_t i = 1; i < done->replaced.size(); ++i)
+        names += (names.empty() ? "" : ", ") + std::to_string(done->replaced[i] + 1);
+      options.progress->info("sliver block " + std::to_string(s + 1) + " thickened with material of block(s) " +
+                             names + ": " + std::to_string(done->blocks.size()) + " block(s) for " +
+                             std::to_string(done->replaced.size()) + ", no sliver, nothing deviates");
+    }
+    // Replace: the thickened sliver at s, each neighbour by its first piece
+    // (or removed when none is left), the other pieces appended.
+    std::vector<std::optional<std::size_t>> first(r.blocks.size());  // new block taking each old block's place
+    first[s] = 0;
+    std::vector<std::size_t> extra;
+    for (std::size_t b = 1, i = 1; i < done->replaced.size(); ++i)
+      for (std::size_t p = 0; p < done->pieces[i]; ++p, ++b) {
+        if (p == 0)
+          first[done->replaced[i]] = b;
+        else
+          extra.push_back(b);
+      }
+    std::vector<Block> next;
+    std::vector<char> next_filled, next_flags;
+    const auto add = [&](Block block, char fill, char flag) {
+      next.push_back(std::move(block));
+      if (!r.filled.empty()) next_filled.push_back(fill);
+      next_flags.push_back(flag);
+    };
+    std::size_t at = 0;
+    for (std::size_t i = 0; i < r.blocks.size(); ++i) {
+      const bool changed = std::find(done->replaced.begin(), done->replaced.end(), i) != done->replaced.end();
+      if (i == s) at = next.size();
+      if (!changed)
+        add(std::move(r.blocks[i]), r.filled.empty() ? char{0} : r.filled[i], flags[i]);
+      else if (first[i])
+        add(std::move(done->blocks[*first[i]]), done->filled.empty() ? char{0} : done->filled[*first[i]], 0);
+    }
+    for (std::size_t b : extra) add(std::move(done->blocks[b]), done->filled.empty() ? char{0} : done->filled[b], 0);
+    r.blocks = std::move(next);
+    r.filled = std::move(next_filled);
+    flags = std::move(next_flags);
+    ++r.num_thickened;
+    // the cleanup's tolerance, as a merge within T records it (at T = 0 the
+    // export cleans every block at that tolerance anyway, as merge_blocks()'s unions)
+    if (options.tolerance > 0) r.max_deviation = std::max(r.max_deviation, done->moved);
+    s = at;  // the blocks before it may have moved down: go on after the thickened sliver
+  }
+}
+
 }  // namespace
 
 std::vector<char> sliver_flags(const Mesh& solid, const std::vector<Block>& blocks, double min_thickness) {
@@ -298,13 +608,29 @@ SliverRemovalResult remove_slivers(const Mesh& solid, std::vector<Block> blocks,
   std::vector<char> flags = sliver_flags(solid, blocks, options.min_thickness);
   result.num_found = static_cast<std::size_t>(std::count(flags.begin(), flags.end(), char{1}));
   result.num_left = result.num_found;
-  if (result.num_found == 0 || options.tolerance == 0) {
+  if (result.num_found == 0) {
+    result.blocks = std::move(blocks);
+    return result;
+  }
+  if (options.tolerance == 0) {
+    // Exact: nothing may deviate, so only the thickening (4.), which moves
+    // material between blocks exactly.
+    result.blocks = std::move(blocks);
+    if (options.thicken) {
+      thicken_slivers(solid, result, options);
+      flags = sliver_flags(solid, result.blocks, options.min_thickness);
+      result.num_left = static_cast<std::size_t>(std::count(flags.begin(), flags.end(), char{1}));
+    }
     if (options.progress && result.num_found > 0)
-      options.progress->warn(std::to_string(result.num_found) + " sliver block(s) thinner than " +
+      options.progress->info(std::to_string(result.num_found) + " sliver block(s) thinner than " +
+                             std::to_string(options.min_thickness) + " model units where the model is thicker: " +
+                             std::to_string(result.num_thickened) + " thickened with a neighbour's material, " +
+                             std::to_string(result.num_left) + " left");
+    if (options.progress && result.num_left > 0)
+      options.progress->warn(std::to_string(result.num_left) + " sliver block(s) thinner than " +
                              std::to_string(options.min_thickness) +
                              " model units where the model is thicker (exact decomposition: nothing may deviate, "
                              "they are kept; validate check 9 lists them)");
-    result.blocks = std::move(blocks);
     return result;
   }
   result.blocks = std::move(blocks);
@@ -314,6 +640,8 @@ SliverRemovalResult remove_slivers(const Mesh& solid, std::vector<Block> blocks,
   // 3. Splits of each sliver left across a plane of its own faces, when
   //    the drops and merges then remove every thin piece.
   split_slivers(solid, result, options);
+  // 4. Thickening of each sliver left with its neighbours' material, exactly.
+  if (options.thicken) thicken_slivers(solid, result, options);
   flags = sliver_flags(solid, result.blocks, options.min_thickness);
   result.num_left = static_cast<std::size_t>(std::count(flags.begin(), flags.end(), char{1}));
   if (options.progress) {
@@ -322,6 +650,7 @@ SliverRemovalResult remove_slivers(const Mesh& solid, std::vector<Block> blocks,
                            std::to_string(result.num_merged) + " merged into a neighbour and " +
                            std::to_string(result.num_dropped) + " dropped within the tolerance (" +
                            std::to_string(result.num_split) + " split first), " +
+                           std::to_string(result.num_thickened) + " thickened with a neighbour's material, " +
                            std::to_string(result.num_left) + " left");
     if (result.num_left > 0) {
       // Why each sliver left could not be dropped (the merges tried every neighbour, the splits every plane).
@@ -337,7 +666,9 @@ SliverRemovalResult remove_slivers(const Mesh& solid, std::vector<Block> blocks,
                                std::to_string(size.x()) + " x " + std::to_string(size.y()) + " x " +
                                std::to_string(size.z()) + " at " + std::to_string(boxes[i].min.x()) + ", " +
                                std::to_string(boxes[i].min.y()) + ", " + std::to_string(boxes[i].min.z()) +
-                               "): no drop: " + why + "; no merge with a neighbour within T; no split of it whose thin pieces go");
+                               "): no drop: " + why +
+                                   "; no merge with a neighbour within T; no split of it whose thin pieces go; no "
+                                   "thickening");
       }
     }
     if (result.num_left > 0)

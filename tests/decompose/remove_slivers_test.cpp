@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <limits>
+#include <string>
 #include <utility>
 
 #include "subfab/core/error.h"
@@ -73,13 +75,23 @@ TEST(RemoveSlivers, AThinCapWithinTheToleranceIsDroppedAndKeptBelowIt) {
   const SliverRemovalResult below = remove_slivers(solid, blocks, o);
   EXPECT_EQ(below.num_found, 0u);
   EXPECT_EQ(below.blocks.size(), 2u);
-  // Exact (T = 0) with a threshold above 0.3: a sliver, counted and kept.
+  // Exact (T = 0) with a threshold above 0.3: a sliver, which nothing may
+  // drop; thickened with N's top 0.3 (exact: the same solid), or, without
+  // the thickening, counted and kept.
   o.tolerance = 0.0;
   o.min_thickness = 0.5;
   const SliverRemovalResult exact = remove_slivers(solid, blocks, o);
   EXPECT_EQ(exact.num_found, 1u);
-  EXPECT_EQ(exact.num_left, 1u);
-  EXPECT_EQ(exact.blocks.size(), 2u);
+  EXPECT_EQ(exact.num_thickened, 1u);
+  EXPECT_EQ(exact.num_left, 0u);
+  ASSERT_EQ(exact.blocks.size(), 2u);
+  EXPECT_NEAR(signed_volume(exact.blocks[0].mesh), 1000.0 - 30.0, 1e-9);
+  EXPECT_NEAR(signed_volume(exact.blocks[1].mesh), 30.0 + 30.0, 1e-9);
+  o.thicken = false;
+  const SliverRemovalResult kept = remove_slivers(solid, blocks, o);
+  EXPECT_EQ(kept.num_found, 1u);
+  EXPECT_EQ(kept.num_left, 1u);
+  EXPECT_EQ(kept.blocks.size(), 2u);
 }
 
 TEST(RemoveSlivers, AThinWallInsideTheModelIsDropped) {
@@ -160,13 +172,14 @@ TEST(RemoveSlivers, ASliverReachingPastItsNeighbourIsMergedNotDropped) {
 }
 
 TEST(RemoveSlivers, ASliverNeitherMergeNorDropKeepsWithinTheLimitsIsKeptAndCounted) {
-  // A height limit of 9 forbids every union (extents 12, 10, 10.3), and the
-  // drop uncovers the ledge: the sliver stays, reported.
+  // A height limit of 0.45 forbids every union (extents 12, 10, 10.3) and
+  // every thickening (a block at least 0.5 thick), and the drop uncovers
+  // the ledge: the sliver stays, reported.
   auto [solid, blocks] = ledged_box();
   SliverRemovalOptions o;
   o.tolerance = 0.5;
   o.min_thickness = 0.5;
-  o.max_height = 9.0;
+  o.max_height = 0.45;
   const SliverRemovalResult r = remove_slivers(solid, blocks, o);
   EXPECT_EQ(r.num_found, 1u);
   EXPECT_EQ(r.num_left, 1u);
@@ -206,6 +219,7 @@ TEST(RemoveSlivers, ASliverWithAThickLumpIsSplitAndItsSheetDropped) {
   o.tolerance = 0.5;
   o.min_thickness = 0.5;
   o.max_height = 3.9;
+  o.thicken = false;       // the split, not the thickening
   o.max_split_planes = 0;  // the stages before the split: S is left
   const SliverRemovalResult before = remove_slivers(solid, blocks, o);
   EXPECT_EQ(before.num_found, 1u);
@@ -271,6 +285,123 @@ TEST(RemoveSlivers, ASliverLeftIsDecomposedAgainWithItsNeighbourExactly) {
   const std::vector<char> thin = sliver_flags(r.canonical, r.blocks, r.sliver_thickness);
   EXPECT_EQ(static_cast<std::size_t>(std::count(thin.begin(), thin.end(), char{1})), r.num_slivers);
   for (const Block& b : r.blocks) EXPECT_TRUE(is_height_field(b.mesh, axis_direction(b.axis)));
+}
+
+//! A closed mesh from polygons (vertex indices counter-clockwise seen from
+//! outside), each fanned from its first vertex.
+Mesh from_polygons(std::vector<Vec3> vertices, const std::vector<std::vector<int>>& polygons) {
+  Mesh m;
+  m.vertices = std::move(vertices);
+  for (const std::vector<int>& p : polygons)
+    for (std::size_t i = 1; i + 1 < p.size(); ++i) m.faces.push_back({p[0], p[i], p[i + 1]});
+  return m;
+}
+
+//! Regression (rocker_arm.obj at --tolerance 5e-4, 2026-12-07: block 51, a
+//! cap 0.35 T thick on the model's flank, milled across its thin axis,
+//! kept as a sliver: its drop uncovers the input 1.7 T, its unions with
+//! its neighbours are no height fields within T). Here: the box N =
+//! [0, 10]^2 x [0, 10] with a roof S on [2, 8] x [0, 10] (apex (5, 5, 10.9),
+//! mean chord along z 0.3 < m = 0.5). T = 0.5: the drop leaves the apex 0.9
+//! from N; every union with N is too tall along z (height limit 10.2) and
+//! no height field along another axis; S has no inner axis-aligned face to
+//! split across. `n_axis`: N's milling axis.
+std::pair<Mesh, std::vector<Block>> roofed_box(Axis n_axis) {
+  const std::vector<Vec3> v{{0, 0, 0},  {10, 0, 0},  {10, 10, 0}, {0, 10, 0},  {0, 0, 10},  {10, 0, 10},
+                            {10, 10, 10}, {0, 10, 10}, {2, 0, 10},  {8, 0, 10},  {8, 10, 10}, {2, 10, 10},
+                            {5, 5, 10.9}};
+  const Mesh solid = from_polygons(v, {{0, 3, 2, 1},
+                                       {0, 1, 5, 9, 8, 4},
+                                       {1, 2, 6, 5},
+                                       {2, 3, 7, 11, 10, 6},
+                                       {3, 0, 4, 7},
+                                       {4, 8, 11, 7},
+                                       {9, 5, 6, 10},
+                                       {8, 9, 12},
+                                       {9, 10, 12},
+                                       {10, 11, 12},
+                                       {11, 8, 12}});
+  const Mesh roof = from_polygons({{2, 0, 10}, {8, 0, 10}, {8, 10, 10}, {2, 10, 10}, {5, 5, 10.9}},
+                                  {{0, 3, 2, 1}, {0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}});
+  return {solid, {Block{box_solid({0, 0, 0}, {10, 10, 10}), n_axis, 0}, Block{roof, Axis::PosZ, 1}}};
+}
+
+TEST(RemoveSlivers, ACapNoDropMergeOrSplitRemovesIsThickenedWithTheMaterialUnderIt) {
+  for (const Axis n_axis : {Axis::PosZ, Axis::PosX}) {
+    SCOPED_TRACE(std::string(axis_name(n_axis)));
+    auto [solid, blocks] = roofed_box(n_axis);
+    ASSERT_TRUE(check_closed_solid(solid).ok());
+    ASSERT_NEAR(signed_volume(solid), 1000.0 + 18.0, 1e-9);
+    ASSERT_TRUE(check_closed_solid(blocks[1].mesh).ok());
+    SliverRemovalOptions o;
+    o.tolerance = 0.5;
+    o.min_thickness = 0.5;
+    o.max_height = 10.2;
+    const SliverRemovalResult r = remove_slivers(solid, blocks, o);
+    EXPECT_EQ(r.num_found, 1u);
+    EXPECT_EQ(r.num_dropped + r.num_merged + r.num_split, 0u);
+    EXPECT_EQ(r.num_thickened, 1u);
+    EXPECT_EQ(r.num_left, 0u);
+    EXPECT_EQ(r.max_deviation, 0.0);  // the material only moved between the blocks
+    ASSERT_EQ(r.blocks.size(), 2u);
+    const Block& cap = r.blocks[1];  // the thickened sliver keeps its place, N's piece N's
+    const Block& base = r.blocks[0];
+    EXPECT_EQ(cap.axis, Axis::PosZ);
+    EXPECT_EQ(base.axis, n_axis);
+    double total = 0.0;
+    for (const Block& b : r.blocks) {
+      EXPECT_TRUE(check_closed_solid(b.mesh).ok());
+      EXPECT_TRUE(is_height_field(b.mesh, axis_direction(b.axis)));
+      total += signed_volume(b.mesh);
+    }
+    EXPECT_NEAR(total, 1018.0, 1e-9);
+    if (n_axis == Axis::PosZ) {
+      // N along z: the slab under the roof's footprint, 1.5 (0.5 - 0.3) =
+      // 0.3 deep, a pocket in N's top whose walls are vertical for N.
+      EXPECT_NEAR(signed_volume(cap.mesh), 18.0 + 6 * 10 * 0.3, 1e-9);
+      EXPECT_EQ(bounding_box(cap.mesh).min, Vec3(2, 0, 9.7));
+    } else {
+      // N along +x: a pocket under the footprint would leave a wall over N's
+      // material at x = 8, so N gives its top slab from x = 2 to its tool
+      // side (x = 10), 0.3 deep: the roof on it is (18 + 24) / 80 = 0.525
+      // thick on average.
+      EXPECT_NEAR(signed_volume(cap.mesh), 18.0 + 8 * 10 * 0.3, 1e-9);
+      EXPECT_EQ(bounding_box(cap.mesh).min, Vec3(2, 0, 9.7));
+      EXPECT_EQ(bounding_box(cap.mesh).max.x(), 10.0);
+    }
+    // Without the height limit the roof merges into N along z instead.
+    o.max_height = std::numeric_limits<double>::infinity();
+    if (n_axis == Axis::PosZ) EXPECT_EQ(remove_slivers(solid, blocks, o).num_thickened, 0u);
+  }
+}
+
+TEST(RemoveSlivers, ASliverOverTheEmptyInteriorIsThickenedWithTheModelUnderIt) {
+  // Regression (kitten.obj at --tolerance 5e-4 --max-height 0.05,
+  // 2026-12-07: block 55, a rod whose cut faces face the model's empty
+  // interior; its only neighbour's union with it is not one solid). The
+  // roof of roofed_box() with only the block B = [0, 10]^2 x [0, 5] beside
+  // it: the model between them is held by no block (the interior may stay
+  // empty). No block meets the slab under the roof; the model there joins
+  // it: 0.3 deep, exactly.
+  auto [solid, blocks] = roofed_box(Axis::PosZ);
+  blocks[0] = Block{box_solid({0, 0, 0}, {10, 10, 5}), Axis::PosZ, 0};
+  SliverRemovalOptions o;
+  o.tolerance = 0.5;
+  o.min_thickness = 0.5;
+  const SliverRemovalResult r = remove_slivers(solid, blocks, o);
+  EXPECT_EQ(r.num_found, 1u);
+  EXPECT_EQ(r.num_thickened, 1u);
+  EXPECT_EQ(r.num_left, 0u);
+  ASSERT_EQ(r.blocks.size(), 2u);
+  EXPECT_EQ(r.blocks[0].mesh.vertices, blocks[0].mesh.vertices);  // B as it was
+  const Block& cap = r.blocks[1];
+  EXPECT_TRUE(check_closed_solid(cap.mesh).ok());
+  EXPECT_TRUE(is_height_field(cap.mesh, axis_direction(cap.axis)));
+  EXPECT_NEAR(signed_volume(cap.mesh), 18.0 + 6 * 10 * 0.3, 1e-9);
+  EXPECT_EQ(bounding_box(cap.mesh).min, Vec3(2, 0, 9.7));
+  // Exactly (T = 0) too: the cap takes only material of the model.
+  o.tolerance = 0.0;
+  EXPECT_EQ(remove_slivers(solid, blocks, o).num_thickened, 1u);
 }
 
 TEST(RemoveSlivers, AThinBlockWhereTheModelIsThinIsNoSliver) {

@@ -170,6 +170,7 @@ struct DecomposeResult {
   std::size_t num_slivers = 0;           // slivers among the output blocks (kept: nothing removes them within T)
   std::size_t num_slivers_merged = 0;    // slivers merged into a neighbour within the tolerance
   std::size_t num_slivers_dropped = 0;   // slivers dropped within the tolerance
+  std::size_t num_slivers_thickened = 0; // slivers thickened with their neighbours' material (exact, any tolerance)
   std::size_t num_slivers_recarved = 0;  // slivers decomposed again exactly together with a neighbour (step 9c)
   std::string tolerance_fallback;  // set when the thin-feature repair gave up at tolerance 0, or the exact
                                    // blocks had slivers, and the result was made within

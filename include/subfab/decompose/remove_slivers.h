@@ -61,11 +61,34 @@
 //!    blocks) and every merge (milled shapes 2-32 T off the input, or
 //!    colliding), but the sheet alone drops within 0.3 T and the lump alone
 //!    is no sliver.
+//! 4. THICKENED otherwise: the sliver takes the material of its neighbours
+//!    in a slab beyond one of its sides across an axis k (the thinnest
+//!    first) that is a
+//!    cut plane (a face of it lies in the plane of its box side), over its
+//!    footprint, a depth delta deep (max(1.5 (min_thickness - t), 1/4
+//!    min_thickness), then min_thickness, then twice: t its mean chord
+//!    along k); a neighbour milled across k may give the slab open towards
+//!    its tool side, or through its whole extent along its own axis (the
+//!    pocket left in it then has no wall over its own material); last, the
+//!    model in the slab that no block holds (the interior may stay empty)
+//!    joins too. Done exactly (corefinement on the exact
+//!    kernel, each result rounded once), so the blocks make up the same
+//!    solid (with at most some of the model's interior added) and nothing
+//!    deviates; kept when the sliver stays one piece, is
+//!    an exact height field along its axis (or another), each neighbour's
+//!    remaining pieces are exact height fields along theirs, there are no
+//!    more blocks than before, none is a sliver and each passes the
+//!    export's check. Typical case (rocker_arm.obj at 5e-4, block 51): a
+//!    cap 0.35 T thick on the model's flank, milled across its thin axis,
+//!    whose drop uncovers the input (1.7 T) and whose neighbours' milled
+//!    unions stray 2 T: the cap is deepened into the block under it.
+//!    kitten.obj at 5e-4 (block 55): a rod whose cut faces face the model's
+//!    empty interior, deepened into it.
 //! A sliver none of them removes is kept and reported (decomposition.json
 //! "num_slivers", validate check 9). At T = 0 nothing may deviate and the
 //! exact merges (merge_blocks) have already joined every pair whose union is
-//! a block, so slivers are only counted and reported (none on the statues
-//! measured, bench/RESULTS.md); at the command's default decompose() then
+//! a block, so only the thickening (4., exact) runs; the slivers left are
+//! counted and reported; at the command's default decompose() then
 //! runs this stage again on the exact blocks within 1, 2 or 5 x 1e-4 of the
 //! diagonal (the fallback tolerance at most; decompose.h).
 //! Deterministic whatever the thread count.
@@ -98,6 +121,7 @@ struct SliverRemovalOptions {
   std::size_t max_region_faces = 80000;  // a merge whose deviation would be measured over more input faces is not
                                          // taken (merge_within_tolerance's cap, raised 4x)
   std::size_t max_split_planes = 6;      // splits: planes tried per sliver left (remove_slivers.h, 3.)
+  bool thicken = true;                   // thickenings of the slivers left (remove_slivers.h, 4.)
   const std::vector<char>* filled = nullptr;  // per input block: 1 when it sticks out of the solid; nullptr: none
   std::function<std::string(const Block&)> block_defect;  // merges: the export's check of a merged block
                                // (merge_within_tolerance's option of that name); empty: not checked
@@ -113,6 +137,7 @@ struct SliverRemovalResult {
   std::size_t num_merged = 0;  // merges that absorbed a sliver
   std::size_t num_dropped = 0; // slivers dropped (pieces of split slivers included)
   std::size_t num_split = 0;   // slivers split into pieces that were then merged or dropped
+  std::size_t num_thickened = 0;  // slivers thickened with their neighbours' material (nothing deviates)
   std::size_t num_left = 0;    // slivers among the output blocks
   double max_deviation = 0.0;  // largest deviation bound of an applied merge or drop, model units
 };
