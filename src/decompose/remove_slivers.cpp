@@ -345,12 +345,17 @@ std::optional<Axis> block_axis(const Mesh& mesh, Axis preferred, const SliverRem
 //! first axis it is a height field along), each neighbour's remaining
 //! pieces keep theirs. Nullopt unless every new block is a clean exact
 //! height field within the limits, there are no more of them than before,
-//! none is a sliver and each passes the export's check.
+//! none is a sliver and each passes the export's check; `why` then says
+//! what failed first.
 std::optional<Thickening> try_thickening(const Mesh& solid, const std::vector<Block>& blocks,
                                          const std::vector<char>& filled, std::size_t s,
                                          const std::vector<std::size_t>& near, const std::vector<Box3>& regions,
                                          const detail::SolidIndex* interior, const Box3& slab,
-                                         const SliverRemovalOptions& options) {
+                                         const SliverRemovalOptions& options, std::string& why) {
+  const auto fail = [&](const char* what) {
+    why = what;
+    return std::nullopt;
+  };
   namespace PMP = CGAL::Polygon_mesh_processing;
   std::optional<Mesh> grown;
   std::vector<std::vector<Mesh>> rest(near.size());
@@ -363,6 +368,7 @@ std::optional<Thickening> try_thickening(const Mesh& solid, const std::vector<Bl
       for (detail::ExactMesh& piece : detail::clip_solid_to_box(solid, *interior, slab)) {
         detail::ExactMesh u;
         if (!PMP::corefine_and_compute_union(sliver, piece, u)) {
+          why = "a union that is no 2-manifold";
           ok = false;
           return;
         }
@@ -373,12 +379,14 @@ std::optional<Thickening> try_thickening(const Mesh& solid, const std::vector<Bl
       detail::ExactMesh a2 = a, b2 = b;
       if (!PMP::corefine_and_compute_intersection(a, b, inside) ||
           !PMP::corefine_and_compute_difference(a2, b2, outside)) {
+        why = "a neighbour's part in or out of its region that is no 2-manifold";
         ok = false;
         return;
       }
       if (inside.number_of_faces() > 0) {
         detail::ExactMesh u;
         if (!PMP::corefine_and_compute_union(sliver, inside, u)) {
+          why = "a union that is no 2-manifold";
           ok = false;
           return;
         }
@@ -389,6 +397,7 @@ std::optional<Thickening> try_thickening(const Mesh& solid, const std::vector<Bl
       for (const detail::ExactMesh& p : pieces) {
         std::optional<Mesh> m = rounded_solid(p, axis_direction(blocks[near[j]].axis), &moved);
         if (!m) {
+          why = "a neighbour's piece that does not round to a clean solid";
           ok = false;
           return;
         }
@@ -399,6 +408,7 @@ std::optional<Thickening> try_thickening(const Mesh& solid, const std::vector<Bl
     if (!ok) return;
     auto fcc = sliver.add_property_map<detail::FaceIndex, std::size_t>("f:cc", 0).first;
     if (PMP::connected_components(sliver, fcc) != 1) {
+      why = "the sliver and what it takes are not one piece";
       ok = false;
       return;
     }
@@ -406,10 +416,12 @@ std::optional<Thickening> try_thickening(const Mesh& solid, const std::vector<Bl
     detail::SuspendArena heap;
     grown = std::move(m);
   });
-  if (!error.empty() || !ok || !grown) return std::nullopt;
+  if (!error.empty()) return fail("an exact boolean failed");
+  if (!ok) return std::nullopt;  // `why` set
+  if (!grown) return fail("the thickened sliver does not round to a clean solid");
   std::size_t count = 1;
   for (const auto& r : rest) count += r.size();
-  if (count > 1 + near.size()) return std::nullopt;
+  if (count > 1 + near.size()) return fail("a neighbour cut in two");
   Thickening t;
   t.moved = moved;
   t.replaced.push_back(s);
@@ -417,7 +429,7 @@ std::optional<Thickening> try_thickening(const Mesh& solid, const std::vector<Bl
   t.pieces.push_back(1);
   for (const auto& r : rest) t.pieces.push_back(r.size());
   const std::optional<Axis> axis = block_axis(*grown, blocks[s].axis, options);
-  if (!axis) return std::nullopt;
+  if (!axis) return fail("the thickened sliver no exact height field within the limits");
   const bool track = !filled.empty();
   char any_filled = track ? filled[s] : 0;
   for (std::size_t j : near) any_filled = static_cast<char>(any_filled || (track && filled[j]));
@@ -426,20 +438,22 @@ std::optional<Thickening> try_thickening(const Mesh& solid, const std::vector<Bl
   for (std::size_t j = 0; j < near.size(); ++j)
     for (Mesh& m : rest[j]) {
       const Block& n = blocks[near[j]];
-      if (!check_closed_solid(m).ok() || detail::count_degenerate_faces(m) > 0) return std::nullopt;
+      if (!check_closed_solid(m).ok() || detail::count_degenerate_faces(m) > 0)
+        return fail("a neighbour's piece that is no clean solid");
       try {
-        if (!milled_shape(m, axis_direction(n.axis)).is_block) return std::nullopt;
+        if (!milled_shape(m, axis_direction(n.axis)).is_block)
+          return fail("a neighbour's piece no exact height field along its axis");
       } catch (const std::exception&) {
-        return std::nullopt;
+        return fail("a neighbour's piece no exact height field along its axis");
       }
       t.blocks.push_back(Block{std::move(m), n.axis, n.source_box});
       if (track) t.filled.push_back(filled[near[j]]);
     }
   const std::vector<char> thin = sliver_flags(solid, t.blocks, options.min_thickness);
-  if (std::any_of(thin.begin(), thin.end(), [](char c) { return c != 0; })) return std::nullopt;
+  if (std::any_of(thin.begin(), thin.end(), [](char c) { return c != 0; })) return fail("a sliver still");
   if (options.block_defect)
     for (const Block& b : t.blocks)
-      if (!options.block_defect(b).empty()) return std::nullopt;
+      if (!options.block_defect(b).empty()) return fail("a block failing the export's check");
   return t;
 }
 
@@ -478,6 +492,7 @@ void thicken_slivers(const Mesh& solid, SliverRemovalResult& r, const SliverRemo
     const std::vector<BoundingBox> boxes = detail::block_boxes(r.blocks);
     const BoundingBox& box = boxes[s];
     std::optional<Thickening> done;
+    std::map<std::string, int> failures;  // why the tries failed, for the log
     for (int k : axes) {
       const double t = th.along[static_cast<std::size_t>(k)];
       std::vector<double> depths{std::max(1.5 * (m - t), 0.25 * m), m, 2.0 * m};
@@ -524,15 +539,30 @@ void thicken_slivers(const Mesh& solid, SliverRemovalResult& r, const SliverRemo
               regions.push_back(region);
             }
             if (through > 0 && !any_through) continue;
+            std::string why;
             done = try_thickening(solid, r.blocks, r.filled, s, near, regions, interior ? &index : nullptr, slab,
-                                  options);
+                                  options, why);
+            if (!done) ++failures[why];
           }
           if (done) break;
         }
       }
       if (done) break;
     }
-    if (!done) continue;
+    if (!done) {
+      if (options.progress) {
+        std::string tries;
+        int n = 0;
+        for (const auto& [what, count] : failures) {
+          tries += (tries.empty() ? "" : ", ") + what + " (" + std::to_string(count) + ")";
+          n += count;
+        }
+        options.progress->info("sliver block " + std::to_string(s + 1) + ": no thickening" +
+                               (n == 0 ? std::string(" (no side of it is a cut face)")
+                                       : " in " + std::to_string(n) + " tries: " + tries));
+      }
+      continue;
+    }
     if (options.progress) {
       std::string names;
       for (std::size_t i = 1; i < done->replaced.size(); ++i)
@@ -673,7 +703,7 @@ SliverRemovalResult remove_slivers(const Mesh& solid, std::vector<Block> blocks,
     }
     if (result.num_left > 0)
       options.progress->warn(std::to_string(result.num_left) +
-                             " sliver block(s) no drop, merge or split keeps within the tolerance are kept "
+                             " sliver block(s) no drop, merge, split or thickening removes within the tolerance are kept "
                              "(validate check 9 lists them)");
   }
   return result;
