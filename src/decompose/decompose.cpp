@@ -807,7 +807,9 @@ std::optional<WithinParts> recarve_within(const Mesh& solid, const Mesh& piece, 
 //! sliver). Last, a sliver none of these removes takes the first exact
 //! re-decomposition that gave one block more than its group, none a
 //! sliver, if its group is still whole after every sliver had its turn
-//! (one block more rather than a block no machine can hold). Within a tolerance (T > 0),
+//! (one block more rather than a block no machine can hold), when
+//! `last_resort` (decompose() first runs it without, then the thickening,
+//! then with it for the slivers left). Within a tolerance (T > 0),
 //! when the exact blocks are not kept, the union is decomposed again under
 //! its own allowances (recarve_within(): milled, measured within T, checked
 //! for collisions; its deviation bound raises result.deviation_bound). A
@@ -818,7 +820,8 @@ std::optional<WithinParts> recarve_within(const Mesh& solid, const Mesh& piece, 
 //! the caller.
 std::size_t recarve_slivers(const Mesh& solid, const Mesh& input, const DecomposeOptions& options,
                             DecomposeResult& result, std::vector<char>& filled, double min_thickness,
-                            const std::function<std::string(const Block&)>& defect, std::size_t max_neighbours = 4) {
+                            const std::function<std::string(const Block&)>& defect, bool last_resort,
+                            std::size_t max_neighbours = 4) {
   Progress* progress = options.progress;
   DecomposeOptions quiet = options;
   quiet.progress = nullptr;
@@ -955,7 +958,7 @@ std::size_t recarve_slivers(const Mesh& solid, const Mesh& input, const Decompos
     const std::size_t two = std::min<std::size_t>(near.size(), 3);
     for (std::size_t a = 0; a < two && !done; ++a)
       for (std::size_t b = a + 1; b < two && !done; ++b) done = attempt({near[a].second, near[b].second});
-    if (!done && spare) spares.push_back(std::move(*spare));
+    if (!done && spare && last_resort) spares.push_back(std::move(*spare));
   }
   // Last resort: one block more, exactly, rather than a sliver no machine
   // can hold (elephant.off at 1e-3: block 35 with its neighbours 43 and 109).
@@ -1497,6 +1500,7 @@ DecomposeResult decompose_once(const Mesh& input, const DecomposeOptions& option
     const auto tt = Clock::now();
     SliverRemovalOptions so = sliver_options(result.tolerance);
     if (!result.filled.empty()) so.filled = &result.filled;
+    so.thicken = false;  // after step 9c's re-decompositions, which may save a block
     if (so.min_thickness > 0) {
       SliverRemovalResult sl = remove_slivers(solid, std::move(result.blocks), so);
       result.blocks = std::move(sl.blocks);
@@ -1506,14 +1510,28 @@ DecomposeResult decompose_once(const Mesh& input, const DecomposeOptions& option
       result.num_slivers = sl.num_left;
       result.num_slivers_merged = sl.num_merged;
       result.num_slivers_dropped = sl.num_dropped;
-      result.num_slivers_thickened = sl.num_thickened;
       // 9c. a sliver left: decomposed again together with a neighbour,
-      //     exactly (nothing deviates: at T = 0 too)
+      //     exactly (nothing deviates: at T = 0 too); then thickened with
+      //     the material beyond a cut face (remove_slivers.h, 4.; exact);
+      //     last, decomposed again into one block more
       if (sl.num_left > 0) {
-        const std::size_t gone =
-            recarve_slivers(solid, input, options, result, result.filled, so.min_thickness, export_defect);
+        std::size_t gone = recarve_slivers(solid, input, options, result, result.filled, so.min_thickness,
+                                           export_defect, /*last_resort=*/false);
+        if (result.num_slivers > gone) {
+          so.thicken = true;
+          so.filled = result.filled.empty() ? nullptr : &result.filled;
+          SliverRemovalResult th = thicken_slivers(solid, std::move(result.blocks), so);
+          result.blocks = std::move(th.blocks);
+          if (!th.filled.empty()) result.filled = std::move(th.filled);
+          result.deviation_bound = std::max(result.deviation_bound, th.max_deviation);
+          result.num_slivers_thickened = th.num_thickened;
+          gone += th.num_thickened;
+          if (th.num_left > 0)
+            gone += recarve_slivers(solid, input, options, result, result.filled, so.min_thickness, export_defect,
+                                    /*last_resort=*/true);
+        }
         result.num_slivers -= std::min(result.num_slivers, gone);
-        result.num_slivers_recarved = gone;
+        result.num_slivers_recarved = gone - result.num_slivers_thickened;
       }
     }
     (result.tolerance > 0 ? result.timings.tolerance : result.timings.carve) += seconds_since(tt);

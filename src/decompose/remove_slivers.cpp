@@ -362,42 +362,58 @@ std::optional<Thickening> try_thickening(const Mesh& solid, const std::vector<Bl
   double moved = 0.0;
   bool ok = true;
   detail::warm_up_exact_booleans();
+  const char* reason = nullptr;  // not a std::string: nothing inside the arena may outlive it
   const std::string error = detail::run_in_arena([&] {
+    // A mesh with two vertices at one point (a pinch CGAL's output splits)
+    // is never given to the corefinement again: CGAL 5.5 can loop for ever
+    // on one (decompose.h, the carve's pinch handling).
+    const auto pinched = [&](const detail::ExactMesh& m) {
+      if (!detail::has_coincident_vertices(m)) return false;
+      reason = "a part that touches itself at a point";
+      ok = false;
+      return true;
+    };
     detail::ExactMesh sliver = detail::to_exact(blocks[s].mesh);
+    if (pinched(sliver)) return;
     if (interior)  // the model in the slab: what no block holds there joins the sliver
       for (detail::ExactMesh& piece : detail::clip_solid_to_box(solid, *interior, slab)) {
         detail::ExactMesh u;
+        if (pinched(piece)) return;
         if (!PMP::corefine_and_compute_union(sliver, piece, u)) {
-          why = "a union that is no 2-manifold";
+          reason = "a union that is no 2-manifold";
           ok = false;
           return;
         }
         sliver = std::move(u);
+        if (pinched(sliver)) return;
       }
     for (std::size_t j = 0; j < near.size() && ok; ++j) {
       detail::ExactMesh a = detail::to_exact(blocks[near[j]].mesh), b = detail::box_mesh(regions[j]), inside, outside;
+      if (pinched(a)) return;
       detail::ExactMesh a2 = a, b2 = b;
       if (!PMP::corefine_and_compute_intersection(a, b, inside) ||
           !PMP::corefine_and_compute_difference(a2, b2, outside)) {
-        why = "a neighbour's part in or out of its region that is no 2-manifold";
+        reason = "a neighbour's part in or out of its region that is no 2-manifold";
         ok = false;
         return;
       }
+      if (pinched(inside) || pinched(outside)) return;
       if (inside.number_of_faces() > 0) {
         detail::ExactMesh u;
         if (!PMP::corefine_and_compute_union(sliver, inside, u)) {
-          why = "a union that is no 2-manifold";
+          reason = "a union that is no 2-manifold";
           ok = false;
           return;
         }
         sliver = std::move(u);
+        if (pinched(sliver)) return;
       }
       std::vector<detail::ExactMesh> pieces;
       if (outside.number_of_faces() > 0) PMP::split_connected_components(outside, pieces);
       for (const detail::ExactMesh& p : pieces) {
         std::optional<Mesh> m = rounded_solid(p, axis_direction(blocks[near[j]].axis), &moved);
         if (!m) {
-          why = "a neighbour's piece that does not round to a clean solid";
+          reason = "a neighbour's piece that does not round to a clean solid";
           ok = false;
           return;
         }
@@ -408,7 +424,7 @@ std::optional<Thickening> try_thickening(const Mesh& solid, const std::vector<Bl
     if (!ok) return;
     auto fcc = sliver.add_property_map<detail::FaceIndex, std::size_t>("f:cc", 0).first;
     if (PMP::connected_components(sliver, fcc) != 1) {
-      why = "the sliver and what it takes are not one piece";
+      reason = "the sliver and what it takes are not one piece";
       ok = false;
       return;
     }
@@ -417,7 +433,7 @@ std::optional<Thickening> try_thickening(const Mesh& solid, const std::vector<Bl
     grown = std::move(m);
   });
   if (!error.empty()) return fail("an exact boolean failed");
-  if (!ok) return std::nullopt;  // `why` set
+  if (!ok) return fail(reason ? reason : "an exact step failed");
   if (!grown) return fail("the thickened sliver does not round to a clean solid");
   std::size_t count = 1;
   for (const auto& r : rest) count += r.size();
@@ -457,7 +473,7 @@ std::optional<Thickening> try_thickening(const Mesh& solid, const std::vector<Bl
   return t;
 }
 
-//! Stage 4 of remove_slivers(): the thickening of each sliver left (see
+//! Stage 4 of remove_slivers() (and thicken_slivers()): the thickening of each sliver left (see
 //! remove_slivers.h). Per sliver (in block order), along each frame axis
 //! (the thinnest first: a rod gets thicker along one axis from a slab
 //! along another), across each of
@@ -475,7 +491,7 @@ std::optional<Thickening> try_thickening(const Mesh& solid, const std::vector<Bl
 //! model's interior added (the material moves between blocks exactly, then
 //! is rounded once, cleaned as export cleans a block where that leaves
 //! zero-area faces): nothing deviates but for that cleanup (1e-10 x scale).
-void thicken_slivers(const Mesh& solid, SliverRemovalResult& r, const SliverRemovalOptions& options) {
+void thicken_in_place(const Mesh& solid, SliverRemovalResult& r, const SliverRemovalOptions& options) {
   std::vector<char> flags = sliver_flags(solid, r.blocks, options.min_thickness);
   if (std::none_of(flags.begin(), flags.end(), [](char c) { return c != 0; })) return;
   const detail::SolidIndex index(solid);
@@ -647,7 +663,7 @@ SliverRemovalResult remove_slivers(const Mesh& solid, std::vector<Block> blocks,
     // material between blocks exactly.
     result.blocks = std::move(blocks);
     if (options.thicken) {
-      thicken_slivers(solid, result, options);
+      thicken_in_place(solid, result, options);
       flags = sliver_flags(solid, result.blocks, options.min_thickness);
       result.num_left = static_cast<std::size_t>(std::count(flags.begin(), flags.end(), char{1}));
     }
@@ -671,7 +687,7 @@ SliverRemovalResult remove_slivers(const Mesh& solid, std::vector<Block> blocks,
   //    the drops and merges then remove every thin piece.
   split_slivers(solid, result, options);
   // 4. Thickening of each sliver left with its neighbours' material, exactly.
-  if (options.thicken) thicken_slivers(solid, result, options);
+  if (options.thicken) thicken_in_place(solid, result, options);
   flags = sliver_flags(solid, result.blocks, options.min_thickness);
   result.num_left = static_cast<std::size_t>(std::count(flags.begin(), flags.end(), char{1}));
   if (options.progress) {
@@ -709,5 +725,27 @@ SliverRemovalResult remove_slivers(const Mesh& solid, std::vector<Block> blocks,
   return result;
 }
 
-}  // namespace subfab
+SliverRemovalResult thicken_slivers(const Mesh& solid, std::vector<Block> blocks, const SliverRemovalOptions& options) {
+  if (!(options.min_thickness > 0) || !std::isfinite(options.min_thickness))
+    throw InvalidArgumentError("thicken_slivers: min_thickness must be a positive length (model units)");
+  if (options.filled && options.filled->size() != blocks.size())
+    throw InvalidArgumentError("thicken_slivers: one filled flag per block expected");
+  StageScope stage(options.progress, "slivers");
+  SliverRemovalResult result;
+  if (options.filled) result.filled = *options.filled;
+  result.blocks = std::move(blocks);
+  std::vector<char> flags = sliver_flags(solid, result.blocks, options.min_thickness);
+  result.num_found = static_cast<std::size_t>(std::count(flags.begin(), flags.end(), char{1}));
+  result.num_left = result.num_found;
+  if (result.num_found == 0) return result;
+  thicken_in_place(solid, result, options);
+  flags = sliver_flags(solid, result.blocks, options.min_thickness);
+  result.num_left = static_cast<std::size_t>(std::count(flags.begin(), flags.end(), char{1}));
+  if (options.progress)
+    options.progress->info(std::to_string(result.num_found) + " sliver block(s) left: " +
+                           std::to_string(result.num_thickened) + " thickened with a neighbour's material, " +
+                           std::to_string(result.num_left) + " left");
+  return result;
+}
 
+}  // namespace subfab

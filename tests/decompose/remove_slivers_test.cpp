@@ -268,7 +268,7 @@ TEST(RemoveSlivers, BunnyLowresWithinATolerance1e3HasNoSliver) {
   }
 }
 
-//! Step 9c of decompose() (remove_slivers.h, 4.): rotor.off exactly
+//! Step 9c of decompose() (and the thickening after it): rotor.off exactly
 //! (--tolerance 0) keeps slivers after the merges; one of them (2026-12-05:
 //! block 484 with its neighbour 270) becomes one exact block when the pair
 //! is decomposed again on its own. Nothing deviates: every block is still
@@ -281,6 +281,10 @@ TEST(RemoveSlivers, ASliverLeftIsDecomposedAgainWithItsNeighbourExactly) {
   o.fallback_tolerance_fraction = 0.0;
   const DecomposeResult r = decompose(rotor, o);
   EXPECT_GE(r.num_slivers_recarved, 1u);
+  // and, after those re-decompositions, slivers thickened with their
+  // neighbours' material (2026-12-07: blocks 6, 484 and 553 of its exact
+  // blocks, 3 of its 6 slivers)
+  EXPECT_GE(r.num_slivers_thickened, 1u);
   ASSERT_GT(r.sliver_thickness, 0.0);
   const std::vector<char> thin = sliver_flags(r.canonical, r.blocks, r.sliver_thickness);
   EXPECT_EQ(static_cast<std::size_t>(std::count(thin.begin(), thin.end(), char{1})), r.num_slivers);

@@ -61,7 +61,9 @@
 //!    blocks) and every merge (milled shapes 2-32 T off the input, or
 //!    colliding), but the sheet alone drops within 0.3 T and the lump alone
 //!    is no sliver.
-//! 4. THICKENED otherwise: the sliver takes the material of its neighbours
+//! 4. THICKENED otherwise (decompose() runs this stage on its own,
+//!    thicken_slivers(), after its step 9c's exact re-decompositions):
+//!    the sliver takes the material of its neighbours
 //!    in a slab beyond one of its sides across an axis k (the thinnest
 //!    first) that is a
 //!    cut plane (a face of it lies in the plane of its box side), over its
@@ -148,6 +150,14 @@ struct SliverRemovalResult {
 //! \param blocks exact height-field blocks of `solid`, canonical frame
 //! \throw InvalidArgumentError when min_thickness <= 0, T < 0 or the filled flags do not match the blocks.
 SliverRemovalResult remove_slivers(const Mesh& solid, std::vector<Block> blocks, const SliverRemovalOptions& options);
+
+//! Stage 4 of remove_slivers() alone (the thickening, see the file
+//! comment; exact, at any tolerance), on the slivers of `blocks`:
+//! decompose() runs it after its step 9c's re-decompositions, which may
+//! save a block where the thickening only keeps the count. The result's
+//! num_found, num_thickened, num_left, max_deviation (the cleanup's, at T >
+//! 0) and blocks / filled are set. \throw InvalidArgumentError as remove_slivers().
+SliverRemovalResult thicken_slivers(const Mesh& solid, std::vector<Block> blocks, const SliverRemovalOptions& options);
 
 //! Per block of `blocks` (canonical frame): 1 when it is a sliver of
 //! `solid` at `min_thickness` (find_slivers() in the canonical frame, whose
