@@ -669,10 +669,12 @@ SliverRemovalResult remove_slivers(const Mesh& solid, std::vector<Block> blocks,
     }
     if (options.progress && result.num_found > 0)
       options.progress->info(std::to_string(result.num_found) + " sliver block(s) thinner than " +
-                             std::to_string(options.min_thickness) + " model units where the model is thicker: " +
-                             std::to_string(result.num_thickened) + " thickened with a neighbour's material, " +
-                             std::to_string(result.num_left) + " left");
-    if (options.progress && result.num_left > 0)
+                             std::to_string(options.min_thickness) + " model units where the model is thicker" +
+                             (options.thicken ? ": " + std::to_string(result.num_thickened) +
+                                                    " thickened with a neighbour's material, " +
+                                                    std::to_string(result.num_left) + " left"
+                                              : std::string(" (exact: nothing may deviate)")));
+    if (options.progress && result.num_left > 0 && options.thicken)  // else the caller goes on (step 9c)
       options.progress->warn(std::to_string(result.num_left) + " sliver block(s) thinner than " +
                              std::to_string(options.min_thickness) +
                              " model units where the model is thicker (exact decomposition: nothing may deviate, "
@@ -696,7 +698,9 @@ SliverRemovalResult remove_slivers(const Mesh& solid, std::vector<Block> blocks,
                            std::to_string(result.num_merged) + " merged into a neighbour and " +
                            std::to_string(result.num_dropped) + " dropped within the tolerance (" +
                            std::to_string(result.num_split) + " split first), " +
-                           std::to_string(result.num_thickened) + " thickened with a neighbour's material, " +
+                           (options.thicken ? std::to_string(result.num_thickened) +
+                                                  " thickened with a neighbour's material, "
+                                            : std::string()) +
                            std::to_string(result.num_left) + " left");
     if (result.num_left > 0) {
       // Why each sliver left could not be dropped (the merges tried every neighbour, the splits every plane).
@@ -713,11 +717,11 @@ SliverRemovalResult remove_slivers(const Mesh& solid, std::vector<Block> blocks,
                                std::to_string(size.z()) + " at " + std::to_string(boxes[i].min.x()) + ", " +
                                std::to_string(boxes[i].min.y()) + ", " + std::to_string(boxes[i].min.z()) +
                                "): no drop: " + why +
-                                   "; no merge with a neighbour within T; no split of it whose thin pieces go; no "
-                                   "thickening");
+                                   "; no merge with a neighbour within T; no split of it whose thin pieces go" +
+                                   (options.thicken ? "; no thickening" : ""));
       }
     }
-    if (result.num_left > 0)
+    if (result.num_left > 0 && options.thicken)  // else the caller goes on (decompose's step 9c)
       options.progress->warn(std::to_string(result.num_left) +
                              " sliver block(s) no drop, merge, split or thickening removes within the tolerance are kept "
                              "(validate check 9 lists them)");
