@@ -357,6 +357,12 @@ std::optional<Thickening> try_thickening(const Mesh& solid, const std::vector<Bl
     return std::nullopt;
   };
   namespace PMP = CGAL::Polygon_mesh_processing;
+  // CGAL's corefinement must not be given a face whose corners are
+  // collinear (exact_mesh.h): it may never return (rotor's fallback).
+  if (detail::count_degenerate_faces(blocks[s].mesh) > 0) return fail("a block with a zero-area face");
+  if (blocks[s].mesh.num_faces() > options.max_thicken_faces) return fail("a sliver with too many faces");
+  for (std::size_t j : near)
+    if (detail::count_degenerate_faces(blocks[j].mesh) > 0) return fail("a block with a zero-area face");
   std::optional<Mesh> grown;
   std::vector<std::vector<Mesh>> rest(near.size());
   double moved = 0.0;
@@ -398,6 +404,11 @@ std::optional<Thickening> try_thickening(const Mesh& solid, const std::vector<Bl
         return;
       }
       if (pinched(inside) || pinched(outside)) return;
+      if (inside.number_of_faces() > options.max_thicken_faces) {
+        reason = "a neighbour's part with too many faces";
+        ok = false;
+        return;
+      }
       if (inside.number_of_faces() > 0) {
         detail::ExactMesh u;
         if (!PMP::corefine_and_compute_union(sliver, inside, u)) {

@@ -373,6 +373,13 @@ TEST(RemoveSlivers, ACapNoDropMergeOrSplitRemovesIsThickenedWithTheMaterialUnder
       EXPECT_EQ(bounding_box(cap.mesh).min, Vec3(2, 0, 9.7));
       EXPECT_EQ(bounding_box(cap.mesh).max.x(), 10.0);
     }
+    // A sliver with more faces than max_thicken_faces (the roof has 6) is
+    // not tried: it stays.
+    o.max_thicken_faces = 5;
+    const SliverRemovalResult capped = remove_slivers(solid, blocks, o);
+    EXPECT_EQ(capped.num_thickened, 0u);
+    EXPECT_EQ(capped.num_left, 1u);
+    o.max_thicken_faces = SliverRemovalOptions{}.max_thicken_faces;
     // Without the height limit the roof merges into N along z instead.
     o.max_height = std::numeric_limits<double>::infinity();
     if (n_axis == Axis::PosZ) EXPECT_EQ(remove_slivers(solid, blocks, o).num_thickened, 0u);

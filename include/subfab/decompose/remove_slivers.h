@@ -124,6 +124,11 @@ struct SliverRemovalOptions {
                                          // taken (merge_within_tolerance's cap, raised 4x)
   std::size_t max_split_planes = 6;      // splits: planes tried per sliver left (remove_slivers.h, 3.)
   bool thicken = true;                   // thickenings of the slivers left (remove_slivers.h, 4.)
+  std::size_t max_thicken_faces = 2000;  // thickenings: a sliver, or a neighbour's part in its region, with more
+                                         // faces is not tried (CGAL's corefinement of a large part touching the
+                                         // sliver along a plane ran over 30 minutes, unfinished, on rotor's fallback:
+                                         // a 3462-face sliver and a 2388-face part; the slivers removed so far
+                                         // have 70-114 faces)
   const std::vector<char>* filled = nullptr;  // per input block: 1 when it sticks out of the solid; nullptr: none
   std::function<std::string(const Block&)> block_defect;  // merges: the export's check of a merged block
                                // (merge_within_tolerance's option of that name); empty: not checked
