@@ -357,15 +357,36 @@ std::optional<Thickening> try_thickening(const Mesh& solid, const std::vector<Bl
     return std::nullopt;
   };
   namespace PMP = CGAL::Polygon_mesh_processing;
-  // CGAL's corefinement must not be given a face whose corners are
-  // collinear (exact_mesh.h): it may never return (rotor's fallback).
-  if (detail::count_degenerate_faces(blocks[s].mesh) > 0) return fail("a block with a zero-area face");
   if (blocks[s].mesh.num_faces() > options.max_thicken_faces) return fail("a sliver with too many faces");
-  for (std::size_t j : near)
-    if (detail::count_degenerate_faces(blocks[j].mesh) > 0) return fail("a block with a zero-area face");
+  // CGAL's corefinement must not be given a face whose corners are
+  // collinear (exact_mesh.h): it may never return (rotor's fallback). A
+  // block with such faces (the export cleans them later) is used cleaned as
+  // the export cleans it (clean_rounded_block(), 1e-10 x the scale).
+  double moved = 0.0;
+  std::vector<Mesh> cleaned;  // the blocks' working copies that needed the cleanup
+  std::vector<const Mesh*> work(blocks.size(), nullptr);
+  cleaned.reserve(1 + near.size());
+  std::vector<std::size_t> used{s};
+  used.insert(used.end(), near.begin(), near.end());
+  for (std::size_t b : used) {
+    work[b] = &blocks[b].mesh;
+    if (detail::count_degenerate_faces(blocks[b].mesh) == 0) continue;
+    Mesh m = blocks[b].mesh;
+    const FinalizeOptions fo;
+    const double tolerance = fo.relative_tolerance * rounding_scale(m);
+    try {
+      clean_rounded_block(m, axis_direction(blocks[b].axis), tolerance, fo);
+    } catch (const std::exception&) {
+      return fail("a block with a zero-area face the cleanup does not remove");
+    }
+    if (m.faces.empty() || !check_closed_solid(m).ok() || detail::count_degenerate_faces(m) > 0)
+      return fail("a block with a zero-area face the cleanup does not remove");
+    moved = std::max(moved, tolerance);
+    cleaned.push_back(std::move(m));
+    work[b] = &cleaned.back();
+  }
   std::optional<Mesh> grown;
   std::vector<std::vector<Mesh>> rest(near.size());
-  double moved = 0.0;
   bool ok = true;
   detail::warm_up_exact_booleans();
   const char* reason = nullptr;  // not a std::string: nothing inside the arena may outlive it
@@ -379,7 +400,7 @@ std::optional<Thickening> try_thickening(const Mesh& solid, const std::vector<Bl
       ok = false;
       return true;
     };
-    detail::ExactMesh sliver = detail::to_exact(blocks[s].mesh);
+    detail::ExactMesh sliver = detail::to_exact(*work[s]);
     if (pinched(sliver)) return;
     if (interior)  // the model in the slab: what no block holds there joins the sliver
       for (detail::ExactMesh& piece : detail::clip_solid_to_box(solid, *interior, slab)) {
@@ -394,7 +415,7 @@ std::optional<Thickening> try_thickening(const Mesh& solid, const std::vector<Bl
         if (pinched(sliver)) return;
       }
     for (std::size_t j = 0; j < near.size() && ok; ++j) {
-      detail::ExactMesh a = detail::to_exact(blocks[near[j]].mesh), b = detail::box_mesh(regions[j]), inside, outside;
+      detail::ExactMesh a = detail::to_exact(*work[near[j]]), b = detail::box_mesh(regions[j]), inside, outside;
       if (pinched(a)) return;
       detail::ExactMesh a2 = a, b2 = b;
       if (!PMP::corefine_and_compute_intersection(a, b, inside) ||
