@@ -528,6 +528,7 @@ void thicken_in_place(const Mesh& solid, SliverRemovalResult& r, const SliverRem
   if (std::none_of(flags.begin(), flags.end(), [](char c) { return c != 0; })) return;
   const detail::SolidIndex index(solid);
   const double m = options.min_thickness;
+  std::size_t total_tries = 0;  // over every sliver (options.max_thicken_tries_total)
   for (std::size_t s = 0; s < r.blocks.size(); ++s) {
     if (!flags[s]) continue;
     const Block& sliver = r.blocks[s];
@@ -540,6 +541,7 @@ void thicken_in_place(const Mesh& solid, SliverRemovalResult& r, const SliverRem
     const std::vector<BoundingBox> boxes = detail::block_boxes(r.blocks);
     const BoundingBox& box = boxes[s];
     std::optional<Thickening> done;
+    std::size_t tries = 0;
     std::map<std::string, int> failures;  // why the tries failed, for the log
     for (int k : axes) {
       const double t = th.along[static_cast<std::size_t>(k)];
@@ -569,7 +571,7 @@ void thicken_in_place(const Mesh& solid, SliverRemovalResult& r, const SliverRem
           static constexpr std::array<std::pair<int, bool>, 5> kVariants{
               {{0, false}, {1, false}, {2, false}, {0, true}, {1, true}}};
           for (const auto& [through, interior] : kVariants) {
-            if (done) break;
+            if (done || tries >= options.max_thicken_tries || total_tries >= options.max_thicken_tries_total) break;
             if (!interior && near.empty()) continue;
             std::vector<Box3> regions;
             bool any_through = false;
@@ -588,6 +590,8 @@ void thicken_in_place(const Mesh& solid, SliverRemovalResult& r, const SliverRem
             }
             if (through > 0 && !any_through) continue;
             std::string why;
+            ++tries;
+            ++total_tries;
             done = try_thickening(solid, r.blocks, r.filled, s, near, regions, interior ? &index : nullptr, slab,
                                   options, why);
             if (!done) ++failures[why];
@@ -599,15 +603,17 @@ void thicken_in_place(const Mesh& solid, SliverRemovalResult& r, const SliverRem
     }
     if (!done) {
       if (options.progress) {
-        std::string tries;
+        std::string list;
         int n = 0;
         for (const auto& [what, count] : failures) {
-          tries += (tries.empty() ? "" : ", ") + what + " (" + std::to_string(count) + ")";
+          list += (list.empty() ? "" : ", ") + what + " (" + std::to_string(count) + ")";
           n += count;
         }
         options.progress->info("sliver block " + std::to_string(s + 1) + ": no thickening" +
-                               (n == 0 ? std::string(" (no side of it is a cut face)")
-                                       : " in " + std::to_string(n) + " tries: " + tries));
+                               (n == 0 ? std::string(total_tries >= options.max_thicken_tries_total
+                                                         ? " (this stage's budget of tries is spent)"
+                                                         : " (no side of it is a cut face)")
+                                       : " in " + std::to_string(n) + " tries: " + list));
       }
       continue;
     }

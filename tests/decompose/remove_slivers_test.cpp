@@ -383,7 +383,9 @@ TEST(RemoveSlivers, ACapNoDropMergeOrSplitRemovesIsThickenedWithTheMaterialUnder
     o.max_thicken_faces = SliverRemovalOptions{}.max_thicken_faces;
     // Without the height limit the roof merges into N along z instead.
     o.max_height = std::numeric_limits<double>::infinity();
-    if (n_axis == Axis::PosZ) EXPECT_EQ(remove_slivers(solid, blocks, o).num_thickened, 0u);
+    if (n_axis == Axis::PosZ) {
+      EXPECT_EQ(remove_slivers(solid, blocks, o).num_thickened, 0u);
+    }
   }
 }
 

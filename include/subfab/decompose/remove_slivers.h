@@ -124,6 +124,10 @@ struct SliverRemovalOptions {
                                          // taken (merge_within_tolerance's cap, raised 4x)
   std::size_t max_split_planes = 6;      // splits: planes tried per sliver left (remove_slivers.h, 3.)
   bool thicken = true;                   // thickenings of the slivers left (remove_slivers.h, 4.)
+  std::size_t max_thicken_tries = 30;         // thickenings: tries per sliver at most, a bound on the cost
+                                             // (without it decimated_knight's 36 exact slivers took 1425 tries,
+                                             // 10 min, for 3 thickened)
+  std::size_t max_thicken_tries_total = 300; // thickenings: tries per call at most, over every sliver
   std::size_t max_thicken_faces = 2000;  // thickenings: a sliver, or a neighbour's part in its region, with more
                                          // faces is not tried (CGAL's corefinement of a large part touching the
                                          // sliver along a plane ran over 30 minutes, unfinished, on rotor's fallback:
