@@ -214,6 +214,19 @@ CleanupReport clean_rounded_block(Mesh& block, const Vec3& direction, double tol
   return report;
 }
 
+std::optional<double> clean_to_closed_solid(Mesh& block, const Vec3& direction) {
+  const FinalizeOptions fo;
+  const double tolerance = fo.relative_tolerance * rounding_scale(block);
+  try {
+    clean_rounded_block(block, direction, tolerance, fo);
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+  if (block.faces.empty() || !check_closed_solid(block).ok() || detail::count_degenerate_faces(block) > 0)
+    return std::nullopt;
+  return tolerance;
+}
+
 std::string block_defect(const Mesh& block, const Vec3& direction, double diagonal, const FinalizeOptions& options) {
   const SolidReport solid = check_closed_solid(block);
   if (solid.num_faces == 0) return "it has no faces";

@@ -47,15 +47,9 @@ std::optional<Mesh> exact_union(const Mesh& a, const Mesh& b, bool clean, const 
   *moved = 0.0;
   if (!u || rounding.num_degenerate_faces + rounding.num_flipped_faces == 0) return u;
   if (!clean) return std::nullopt;
-  const double scale = rounding_scale(*u);
-  const FinalizeOptions fo;
-  *moved = fo.relative_tolerance * scale;
-  try {
-    clean_rounded_block(*u, direction, *moved, fo);
-  } catch (const std::exception&) {
-    return std::nullopt;
-  }
-  if (u->faces.empty() || !check_closed_solid(*u).ok() || detail::count_degenerate_faces(*u) > 0) return std::nullopt;
+  const std::optional<double> tolerance = clean_to_closed_solid(*u, direction);
+  if (!tolerance) return std::nullopt;
+  *moved = *tolerance;
   return u;
 }
 

@@ -307,15 +307,9 @@ std::optional<Mesh> rounded_solid(const detail::ExactMesh& mesh, const Vec3& dir
   detail::RoundingReport rounding;
   Mesh m = detail::to_double(mesh, &rounding);
   if (rounding.num_degenerate_faces + rounding.num_flipped_faces > 0) {
-    const FinalizeOptions fo;
-    const double tolerance = fo.relative_tolerance * rounding_scale(m);
-    try {
-      clean_rounded_block(m, direction, tolerance, fo);
-    } catch (const std::exception&) {
-      return std::nullopt;
-    }
-    if (m.faces.empty() || !check_closed_solid(m).ok() || detail::count_degenerate_faces(m) > 0) return std::nullopt;
-    *moved = std::max(*moved, tolerance);
+    const std::optional<double> tolerance = clean_to_closed_solid(m, direction);
+    if (!tolerance) return std::nullopt;
+    *moved = std::max(*moved, *tolerance);
   }
   return m;
 }
@@ -363,27 +357,20 @@ std::optional<Thickening> try_thickening(const Mesh& solid, const std::vector<Bl
   // block with such faces (the export cleans them later) is used cleaned as
   // the export cleans it (clean_rounded_block(), 1e-10 x the scale).
   double moved = 0.0;
-  std::vector<Mesh> cleaned;  // the blocks' working copies that needed the cleanup
-  std::vector<const Mesh*> work(blocks.size(), nullptr);
-  cleaned.reserve(1 + near.size());
+  // work[0]: the sliver's mesh, work[1 + j]: neighbour j's (cleaned copies where needed)
   std::vector<std::size_t> used{s};
   used.insert(used.end(), near.begin(), near.end());
+  std::vector<Mesh> cleaned;
+  cleaned.reserve(used.size());
+  std::vector<const Mesh*> work;
   for (std::size_t b : used) {
-    work[b] = &blocks[b].mesh;
+    work.push_back(&blocks[b].mesh);
     if (detail::count_degenerate_faces(blocks[b].mesh) == 0) continue;
-    Mesh m = blocks[b].mesh;
-    const FinalizeOptions fo;
-    const double tolerance = fo.relative_tolerance * rounding_scale(m);
-    try {
-      clean_rounded_block(m, axis_direction(blocks[b].axis), tolerance, fo);
-    } catch (const std::exception&) {
-      return fail("a block with a zero-area face the cleanup does not remove");
-    }
-    if (m.faces.empty() || !check_closed_solid(m).ok() || detail::count_degenerate_faces(m) > 0)
-      return fail("a block with a zero-area face the cleanup does not remove");
-    moved = std::max(moved, tolerance);
-    cleaned.push_back(std::move(m));
-    work[b] = &cleaned.back();
+    cleaned.push_back(blocks[b].mesh);
+    const std::optional<double> tolerance = clean_to_closed_solid(cleaned.back(), axis_direction(blocks[b].axis));
+    if (!tolerance) return fail("a block with a zero-area face the cleanup does not remove");
+    moved = std::max(moved, *tolerance);
+    work.back() = &cleaned.back();
   }
   std::optional<Mesh> grown;
   std::vector<std::vector<Mesh>> rest(near.size());
@@ -400,22 +387,25 @@ std::optional<Thickening> try_thickening(const Mesh& solid, const std::vector<Bl
       ok = false;
       return true;
     };
-    detail::ExactMesh sliver = detail::to_exact(*work[s]);
+    detail::ExactMesh sliver = detail::to_exact(*work[0]);
     if (pinched(sliver)) return;
-    if (interior)  // the model in the slab: what no block holds there joins the sliver
-      for (detail::ExactMesh& piece : detail::clip_solid_to_box(solid, *interior, slab)) {
-        detail::ExactMesh u;
-        if (pinched(piece)) return;
-        if (!PMP::corefine_and_compute_union(sliver, piece, u)) {
-          reason = "a union that is no 2-manifold";
-          ok = false;
-          return;
-        }
-        sliver = std::move(u);
-        if (pinched(sliver)) return;
+    // `piece` joins the sliver; false (and `ok` false) when that fails
+    const auto join = [&](detail::ExactMesh& piece) {
+      detail::ExactMesh u;
+      if (pinched(piece)) return false;
+      if (!PMP::corefine_and_compute_union(sliver, piece, u)) {
+        reason = "a union that is no 2-manifold";
+        ok = false;
+        return false;
       }
+      sliver = std::move(u);
+      return !pinched(sliver);
+    };
+    if (interior)  // the model in the slab: what no block holds there joins the sliver
+      for (detail::ExactMesh& piece : detail::clip_solid_to_box(solid, *interior, slab))
+        if (!join(piece)) return;
     for (std::size_t j = 0; j < near.size() && ok; ++j) {
-      detail::ExactMesh a = detail::to_exact(*work[near[j]]), b = detail::box_mesh(regions[j]), inside, outside;
+      detail::ExactMesh a = detail::to_exact(*work[1 + j]), b = detail::box_mesh(regions[j]), inside, outside;
       if (pinched(a)) return;
       detail::ExactMesh a2 = a, b2 = b;
       if (!PMP::corefine_and_compute_intersection(a, b, inside) ||
@@ -424,22 +414,13 @@ std::optional<Thickening> try_thickening(const Mesh& solid, const std::vector<Bl
         ok = false;
         return;
       }
-      if (pinched(inside) || pinched(outside)) return;
+      if (pinched(outside)) return;
       if (inside.number_of_faces() > options.max_thicken_faces) {
         reason = "a neighbour's part with too many faces";
         ok = false;
         return;
       }
-      if (inside.number_of_faces() > 0) {
-        detail::ExactMesh u;
-        if (!PMP::corefine_and_compute_union(sliver, inside, u)) {
-          reason = "a union that is no 2-manifold";
-          ok = false;
-          return;
-        }
-        sliver = std::move(u);
-        if (pinched(sliver)) return;
-      }
+      if (inside.number_of_faces() > 0 && !join(inside)) return;
       std::vector<detail::ExactMesh> pieces;
       if (outside.number_of_faces() > 0) PMP::split_connected_components(outside, pieces);
       for (const detail::ExactMesh& p : pieces) {

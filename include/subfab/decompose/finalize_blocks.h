@@ -31,6 +31,7 @@
 
 #include <cstddef>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -141,6 +142,14 @@ class RoundedBlockCheck {
 //! \throw InvalidMeshError when `block` is not an oriented 2-manifold.
 CleanupReport clean_rounded_block(Mesh& block, const Vec3& direction, double tolerance,
                                   const FinalizeOptions& options = {});
+
+//! clean_rounded_block() at the export's own tolerance (relative_tolerance
+//! x rounding_scale(block)) for a block whose rounding to doubles left
+//! zero-area or flipped faces (the merges within a tolerance, the sliver
+//! stage's thickening). Returns that tolerance (how far a vertex may have
+//! moved, model units) when the block is then a non-empty closed solid
+//! without zero-area faces; nullopt otherwise (or when the cleanup throws).
+std::optional<double> clean_to_closed_solid(Mesh& block, const Vec3& direction);
 
 //! The verification of step 3 on one block: an empty string when `block` is
 //! closed, manifold, oriented, free of zero-area faces (exact) and of
