@@ -43,6 +43,15 @@ std::pair<Mesh, std::vector<Block>> ledged_box() {
            Block{box_solid({0, 0, 10}, {12, 10, 10.3}), Axis::PosZ, 1}}};
 }
 
+//! The options these shapes are tested at: T = 0.5 and a sliver threshold
+//! of 0.5 (validate's max(1e-4 x diagonal, T) on 10-unit shapes).
+SliverRemovalOptions within_half() {
+  SliverRemovalOptions o;
+  o.tolerance = 0.5;
+  o.min_thickness = 0.5;
+  return o;
+}
+
 TEST(RemoveSlivers, ATestShapeIsAValidSolid) {
   for (const Mesh& m : {capped_box().first, ledged_box().first}) {
     EXPECT_TRUE(check_closed_solid(m).ok());
@@ -57,9 +66,7 @@ TEST(RemoveSlivers, AThinCapWithinTheToleranceIsDroppedAndKeptBelowIt) {
   // input: its faces are 0.3 from the input's top, and the input's top is
   // 0.3 above N's. It is dropped.
   auto [solid, blocks] = capped_box();
-  SliverRemovalOptions o;
-  o.tolerance = 0.5;
-  o.min_thickness = 0.5;
+  SliverRemovalOptions o = within_half();
   const SliverRemovalResult r = remove_slivers(solid, blocks, o);
   EXPECT_EQ(r.num_found, 1u);
   EXPECT_EQ(r.num_dropped, 1u);
@@ -107,9 +114,7 @@ TEST(RemoveSlivers, AThinWallInsideTheModelIsDropped) {
   const std::vector<Block> blocks{Block{box_solid({0, 0, 0}, {10, 10, 5}), Axis::PosZ, 0},
                                   Block{box_solid({0, 0, 5}, {10, 10, 5.3}), Axis::PosZ, 1},
                                   Block{box_solid({0, 0, 5.3}, {10, 10, 10}), Axis::NegZ, 2}};
-  SliverRemovalOptions o;
-  o.tolerance = 0.5;
-  o.min_thickness = 0.5;
+  SliverRemovalOptions o = within_half();
   o.max_height = 9.0;  // no union (extent 10) may be milled: only the drop can remove it
   const SliverRemovalResult r = remove_slivers(solid, blocks, o);
   EXPECT_EQ(r.num_found, 1u);
@@ -134,9 +139,7 @@ TEST(RemoveSlivers, TheDropIsMeasuredOnTheInputNearTheSliverOnly) {
                                   Block{box_solid({0, 0, 10}, {1, 10, 10.3}), Axis::PosZ, 1},       // S
                                   Block{box_solid({1, 0, 10}, {2.5, 10, 10.3}), Axis::PosZ, 2},     // G
                                   Block{box_solid({2.5, 0, 0}, {100, 10, 10.3}), Axis::PosZ, 3}};   // B
-  SliverRemovalOptions o;
-  o.tolerance = 0.5;
-  o.min_thickness = 0.5;
+  SliverRemovalOptions o = within_half();
   const SliverRemovalResult r = remove_slivers(solid, blocks, o);
   EXPECT_EQ(r.num_found, 2u);
   EXPECT_EQ(r.num_dropped, 2u);
@@ -152,9 +155,7 @@ TEST(RemoveSlivers, ASliverReachingPastItsNeighbourIsMergedNotDropped) {
   // two blocks is an exact height field along -z (base on top), so it is
   // merged with no deviation.
   auto [solid, blocks] = ledged_box();
-  SliverRemovalOptions o;
-  o.tolerance = 0.5;
-  o.min_thickness = 0.5;
+  SliverRemovalOptions o = within_half();
   const SliverRemovalResult r = remove_slivers(solid, blocks, o);
   EXPECT_EQ(r.num_found, 1u);
   EXPECT_EQ(r.num_dropped, 0u);
@@ -177,9 +178,7 @@ TEST(RemoveSlivers, ASliverNeitherMergeNorDropKeepsWithinTheLimitsIsKeptAndCount
   // every thickening (a block at least 0.5 thick), and the drop uncovers
   // the ledge: the sliver stays, reported.
   auto [solid, blocks] = ledged_box();
-  SliverRemovalOptions o;
-  o.tolerance = 0.5;
-  o.min_thickness = 0.5;
+  SliverRemovalOptions o = within_half();
   o.max_height = 0.45;
   const SliverRemovalResult r = remove_slivers(solid, blocks, o);
   EXPECT_EQ(r.num_found, 1u);
@@ -216,9 +215,7 @@ TEST(RemoveSlivers, ASliverWithAThickLumpIsSplitAndItsSheetDropped) {
   auto [solid, blocks] = sheet_with_lump();
   ASSERT_TRUE(check_closed_solid(blocks[1].mesh).ok());
   ASSERT_NEAR(signed_volume(blocks[1].mesh), 30.0 + 17.0, 1e-9);
-  SliverRemovalOptions o;
-  o.tolerance = 0.5;
-  o.min_thickness = 0.5;
+  SliverRemovalOptions o = within_half();
   o.max_height = 3.9;
   o.thicken = false;       // the split, not the thickening
   o.max_split_planes = 0;  // the stages before the split: S is left
@@ -338,9 +335,7 @@ TEST(RemoveSlivers, ACapNoDropMergeOrSplitRemovesIsThickenedWithTheMaterialUnder
     ASSERT_TRUE(check_closed_solid(solid).ok());
     ASSERT_NEAR(signed_volume(solid), 1000.0 + 18.0, 1e-9);
     ASSERT_TRUE(check_closed_solid(blocks[1].mesh).ok());
-    SliverRemovalOptions o;
-    o.tolerance = 0.5;
-    o.min_thickness = 0.5;
+    SliverRemovalOptions o = within_half();
     o.max_height = 10.2;
     const SliverRemovalResult r = remove_slivers(solid, blocks, o);
     EXPECT_EQ(r.num_found, 1u);
@@ -399,9 +394,7 @@ TEST(RemoveSlivers, ASliverOverTheEmptyInteriorIsThickenedWithTheModelUnderIt) {
   // it: 0.3 deep, exactly.
   auto [solid, blocks] = roofed_box(Axis::PosZ);
   blocks[0] = Block{box_solid({0, 0, 0}, {10, 10, 5}), Axis::PosZ, 0};
-  SliverRemovalOptions o;
-  o.tolerance = 0.5;
-  o.min_thickness = 0.5;
+  SliverRemovalOptions o = within_half();
   const SliverRemovalResult r = remove_slivers(solid, blocks, o);
   EXPECT_EQ(r.num_found, 1u);
   EXPECT_EQ(r.num_thickened, 1u);
@@ -441,9 +434,7 @@ TEST(RemoveSlivers, ANeighbourWithAZeroAreaFaceIsCleanedBeforeTheThickening) {
   n.faces.push_back({m, b, c});
   n.faces.push_back({m, a, b});  // zero area
   ASSERT_TRUE(check_closed_solid(n).ok());
-  SliverRemovalOptions o;
-  o.tolerance = 0.5;
-  o.min_thickness = 0.5;
+  SliverRemovalOptions o = within_half();
   o.max_height = 10.2;
   const SliverRemovalResult r = remove_slivers(solid, blocks, o);
   EXPECT_EQ(r.num_thickened, 1u);
@@ -460,9 +451,7 @@ TEST(RemoveSlivers, AThinBlockWhereTheModelIsThinIsNoSliver) {
   const Mesh plate = box_solid({0, 0, 0}, {10, 10, 0.3});
   const std::vector<Block> halves{Block{box_solid({0, 0, 0}, {5, 10, 0.3}), Axis::PosZ, 0},
                                   Block{box_solid({5, 0, 0}, {10, 10, 0.3}), Axis::PosZ, 1}};
-  SliverRemovalOptions o;
-  o.tolerance = 0.5;
-  o.min_thickness = 0.5;
+  SliverRemovalOptions o = within_half();
   const SliverRemovalResult r = remove_slivers(plate, halves, o);
   EXPECT_EQ(r.num_found, 0u);
   EXPECT_EQ(r.blocks.size(), 2u);
