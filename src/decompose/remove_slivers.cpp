@@ -658,15 +658,25 @@ std::vector<char> sliver_flags(const Mesh& solid, const std::vector<Block>& bloc
   return flags;
 }
 
-SliverRemovalResult remove_slivers(const Mesh& solid, std::vector<Block> blocks, const SliverRemovalOptions& options) {
+namespace {
+
+//! The checks of remove_slivers() and thicken_slivers() (`name`) on their options.
+void check_options(const char* name, const SliverRemovalOptions& options, std::size_t num_blocks) {
+  const std::string n = name;
   if (!(options.min_thickness > 0) || !std::isfinite(options.min_thickness))
-    throw InvalidArgumentError("remove_slivers: min_thickness must be a positive length (model units)");
+    throw InvalidArgumentError(n + ": min_thickness must be a positive length (model units)");
   if (!(options.tolerance >= 0) || !std::isfinite(options.tolerance))
-    throw InvalidArgumentError("remove_slivers: the tolerance must be a length >= 0");
+    throw InvalidArgumentError(n + ": the tolerance must be a length >= 0");
   if (!(options.error_fraction > 0 && options.error_fraction < 1))
-    throw InvalidArgumentError("remove_slivers: the error fraction must lie in (0, 1)");
-  if (options.filled && options.filled->size() != blocks.size())
-    throw InvalidArgumentError("remove_slivers: one filled flag per block expected");
+    throw InvalidArgumentError(n + ": the error fraction must lie in (0, 1)");
+  if (options.filled && options.filled->size() != num_blocks)
+    throw InvalidArgumentError(n + ": one filled flag per block expected");
+}
+
+}  // namespace
+
+SliverRemovalResult remove_slivers(const Mesh& solid, std::vector<Block> blocks, const SliverRemovalOptions& options) {
+  check_options("remove_slivers", options, blocks.size());
   StageScope stage(options.progress, "slivers");
   SliverRemovalResult result;
   if (options.filled) result.filled = *options.filled;
@@ -749,10 +759,7 @@ SliverRemovalResult remove_slivers(const Mesh& solid, std::vector<Block> blocks,
 }
 
 SliverRemovalResult thicken_slivers(const Mesh& solid, std::vector<Block> blocks, const SliverRemovalOptions& options) {
-  if (!(options.min_thickness > 0) || !std::isfinite(options.min_thickness))
-    throw InvalidArgumentError("thicken_slivers: min_thickness must be a positive length (model units)");
-  if (options.filled && options.filled->size() != blocks.size())
-    throw InvalidArgumentError("thicken_slivers: one filled flag per block expected");
+  check_options("thicken_slivers", options, blocks.size());
   StageScope stage(options.progress, "slivers");
   SliverRemovalResult result;
   if (options.filled) result.filled = *options.filled;
