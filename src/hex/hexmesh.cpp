@@ -309,12 +309,7 @@ HexMeshResult hexmesh_once(const Mesh& surface, const Skeleton* skeleton, const 
   timer.lap("pull boundary");
   if (options.raise_mean) {
     StageScope stage(progress, "raise average quality");
-    RaiseMeanScaledJacobianOptions mo = options.mean;
-    if (mesh.hexes.size() <= options.long_mean_pass_hexes) {  // small meshes: more sweeps within the time target
-      mo.max_sweeps = std::max(mo.max_sweeps, options.long_mean_pass_sweeps);
-      mo.min_gain = std::min(mo.min_gain, options.long_mean_pass_min_gain);
-    }
-    r.mean = detail::raise_mean_scaled_jacobian(mesh, projector, mo);
+    r.mean = detail::raise_mean_scaled_jacobian(mesh, projector, options.mean);
   }
   timer.lap("raise average quality");
   {

@@ -56,7 +56,10 @@ TEST(Hexmesh, CapsuleIsAValidMeshOnItsSurface) {
 
 // The average pass (raise_mean_scaled_jacobian) runs last: it raises the
 // average, the minimum of the final pass stays, and the measures are its
-// result; without it, the average is the final pass's.
+// result; without it, the average is the final pass's. Regression (session
+// 32): with boundary vertices sliding 0.25 of their edge the first two sweeps
+// lower the capsule's average (.8215 -> .8166 -> .8208), and the pass, which
+// stopped after two sweeps that do not raise the best, gave up at the start.
 TEST(Hexmesh, AveragePassRaisesTheAverageAndKeepsTheMinimum) {
   const Mesh m = test::capsule(1.0, 3.0, 32, 8, 24);
   HexMeshOptions options;
@@ -143,7 +146,8 @@ TEST(Hexmesh, CactusDefaultKeepsTheLayersAndBeatsTableD1) {
 // they stayed frozen. With the floor at the held-vertex stage's 0.3 the
 // average is .906 (measured; the layer-keeping trial does not win on the
 // rocker arm, so it is left out here), the minimum and the vertices on the
-// surface as after hexsnap (.3215 / 22 off of 768).
+// surface as after hexsnap (.3215 / 22 off of 768); with the longer pass and
+// a slide of 0.25 (session 32) .911, over Table D.1's .91.
 TEST(Hexmesh, RockerArmAverageIsNotFrozenByTheHeldVertices) {
   if (!test::have_shared_models()) GTEST_SKIP() << "no ../shared/models";
   const Mesh m = read_mesh(test::models_path("rocker_arm.obj"));
@@ -153,26 +157,30 @@ TEST(Hexmesh, RockerArmAverageIsNotFrozenByTheHeldVertices) {
   EXPECT_TRUE(r.check.valid());
   EXPECT_EQ(r.histogram[0], 0u);
   EXPECT_GE(r.pull.snapped, 80u);  // 93 measured
-  EXPECT_GE(r.avg_sj, 0.904);      // .9063 measured (.9006 with the floor at 0.5)
+  EXPECT_GE(r.avg_sj, 0.91);       // .9113 measured (.9063 with a slide of 0.1 and 25 sweeps, .9006 with the floor at 0.5);
+                                   // Table D.1: .91
   EXPECT_GE(r.avg_sj, r.mean.avg_before + 0.05);
   EXPECT_GE(r.min_sj, 0.32);       // .3215
   EXPECT_LE(r.vertices_off_surface, 25u);  // 22
   EXPECT_LT(r.mean_vertex_distance / r.diagonal, 1.5e-4);  // 1.26e-4
 }
 
-// A small mesh gets the longer average pass (more sweeps, a smaller gain to
-// go on): an average at least as high, the same minimum.
-TEST(Hexmesh, SmallMeshGetsTheLongerAveragePass) {
+// The average pass goes on while it gains (100 sweeps, a gain of 2e-5 to go
+// on): against the same pass stopped after 25 sweeps at a gain of 2e-4 (the
+// default until session 32), an average at least as high from the same start,
+// the same minimum.
+TEST(Hexmesh, TheAveragePassGoesOnWhileItGains) {
   const Mesh m = test::capsule(1.0, 3.0, 32, 8, 24);
   HexMeshOptions options;
   options.subdivisions = 1;
   const HexMeshResult longer = hexmesh(m, nullptr, options);
-  options.long_mean_pass_hexes = 0;
+  options.mean.max_sweeps = 25;
+  options.mean.min_gain = 2e-4;
   const HexMeshResult shorter = hexmesh(m, nullptr, options);
-  ASSERT_LE(longer.mesh.num_hexes(), HexMeshOptions{}.long_mean_pass_hexes);
-  EXPECT_LE(shorter.mean.sweeps, options.mean.max_sweeps);
+  EXPECT_LE(shorter.mean.sweeps, 25);
   EXPECT_GT(longer.mean.sweeps, shorter.mean.sweeps);  // the longer pass really ran longer
   EXPECT_GT(longer.avg_sj, shorter.avg_sj);
+  EXPECT_DOUBLE_EQ(longer.mean.avg_before, shorter.mean.avg_before);
   EXPECT_DOUBLE_EQ(longer.mean.min_before, shorter.mean.min_before);
   EXPECT_GE(longer.min_sj, longer.mean.min_before);
 }

@@ -85,12 +85,6 @@ struct HexMeshOptions {
   RaiseWorstScaledJacobianOptions worst;
   bool raise_mean = true;            // then raise_mean_scaled_jacobian() (the average, the minimum kept)
   RaiseMeanScaledJacobianOptions mean;
-  //! meshes of at most long_mean_pass_hexes hexahedra get a longer average pass: at least
-  //! long_mean_pass_sweeps sweeps, min gain at most long_mean_pass_min_gain (rocker arm, 3840
-  //! hexahedra: .908 -> .911; the larger models keep 25 sweeps, the 10 s target)
-  std::size_t long_mean_pass_hexes = 5000;
-  int long_mean_pass_sweeps = 60;
-  double long_mean_pass_min_gain = 5e-5;
   //! the layer-keeping trial (not in the thesis; docs/hexmesh.md, 4c): when keep_layers is off, the
   //! number of subdivisions automatic (subdivisions = -1) and the mesh has at most layer_trial_hexes
   //! hexahedra, the same skeleton is meshed again with keep_layers on and resolution control off, and
