@@ -1303,7 +1303,8 @@ DecomposeResult decompose_once(const Mesh& input, const DecomposeOptions& option
       throw AlgorithmError(infeasible_message(infeasible, input, options.orient));
   }
   // 1b. local repair of the infeasible features (4.3.5)
-  if (!infeasible.feasible() && pinned.empty()) {
+  const bool repaired = !infeasible.feasible() && pinned.empty();
+  if (repaired) {
     repair_stage(input, infeasible, options, result);
     if (result.tolerance > 0) depths = depths_within(result.canonical, options, result);
   }
@@ -1379,7 +1380,21 @@ DecomposeResult decompose_once(const Mesh& input, const DecomposeOptions& option
       exact_kept = true;
     }
   } else {
-    blocks = carve_stages(solid, nullptr, input, options, result);
+    try {
+      blocks = carve_stages(solid, nullptr, input, options, result);
+    } catch (const AlgorithmError& e) {
+      // The repaired solid is free of the features find_infeasible_features()
+      // sees, but grow's refinement can still find no valid box at a corner
+      // the repair left tight: its rounded midpoints tilt a sub-triangle of a
+      // face parallel to an axis by a hair, which then faces away from that
+      // axis (part.off in its input frame, --no-orient: a vertex where two
+      // axes stay open, one closed by such a tilt). The repair has not made
+      // the model decomposable, so at the default this is the repair giving
+      // up: decompose() goes on within the fallback tolerance.
+      if (!repaired || !options.repair) throw;
+      throw RepairGaveUp(std::string("the thin-feature repair left a place no exact height-field block covers: ") +
+                         e.what());
+    }
   }
 
   // 7. merge (4.3.4 post-processing)
@@ -1402,8 +1417,21 @@ DecomposeResult decompose_once(const Mesh& input, const DecomposeOptions& option
     std::vector<char> exact_filled;
     bool usable = true;
     std::vector<Block> exact_blocks;
-    if (!made_first) exact_blocks = carve_stages(solid, any_pinned ? &pinned_only : nullptr, input, options, exact);
-    if (any_pinned) {
+    if (!made_first) {
+      try {
+        exact_blocks = carve_stages(solid, any_pinned ? &pinned_only : nullptr, input, options, exact);
+      } catch (const AlgorithmError& e) {
+        // the blocks within the tolerance are kept (part.off in its input
+        // frame within the fallback: the repaired solid has a corner no exact
+        // box covers once grow refines it, see the exact branch above)
+        usable = false;
+        if (progress)
+          progress->info(std::string(any_pinned ? "the decomposition with the features' allowances only"
+                                                : "the exact decomposition") +
+                         " failed (" + e.what() + "): the blocks within the tolerance are kept");
+      }
+    }
+    if (any_pinned && usable) {
       MillToleranceResult milled = mill_stage(solid, std::move(exact_blocks), options, exact);
       usable = milled.num_failed() == 0;
       exact_blocks = std::move(milled.blocks);
