@@ -5,13 +5,16 @@
 
 #include <gtest/gtest.h>
 
+#include <set>
 #include <string>
 #include <vector>
 
 #include "subfab/core/error.h"
 #include "subfab/validate/milled_shape.h"
 #include "subfab/validate/validate_decomposition.h"
+#include "support/block_test_shapes.h"
 #include "support/groove_shapes.h"
+#include "validate/validate_booleans.h"
 
 namespace subfab {
 namespace {
@@ -104,6 +107,59 @@ TEST(MillWithinTolerance, ASampledPointBeyondTheToleranceFailsTheBlockBeforeItsM
   const MillToleranceResult wide = mill_within_tolerance(box, whole_box(box), o);
   EXPECT_FALSE(wide.stopped);
   EXPECT_EQ(wide.num_failed(), 0u);
+}
+
+// Regression (session 32, max planck at 3.3e-3): the carved blocks do not
+// overlap, so a pair is checked for a collision only where a fill reaches the
+// other block. The grooved box with its top corner [5, 10]^2 x [7, 10] carved
+// off as a second block B, whose box meets the first's, but not its fill (the
+// groove's columns, z <= 6). B has a zero-area face (a vertex in the middle of
+// a top edge, as rounding leaves them), on which exact booleans cannot run: the
+// pair used to be taken as colliding ("its milled shape overlaps block 2")
+// and the grooved block failed, costing a round and a block.
+TEST(MillWithinTolerance, ABlockTheFillCannotReachIsNoCollisionEvenWithAZeroAreaFace) {
+  std::set<test::Cell> notch, rest;
+  for (const test::Cell& c : grooved_box_cells())
+    (c[0] >= 5 && c[1] >= 5 && c[2] >= 7 ? notch : rest).insert(c);
+  const Mesh solid = voxel_mesh(grooved_box_cells());
+  const Mesh a = voxel_mesh(rest);
+  // B: the notch as a box whose top edge (5,10,10)-(10,10,10) gets a midpoint
+  // m and the zero-area face (a, m, b) beside the top triangle it splits.
+  Mesh b = test::box_solid(Vec3(5, 5, 7), Vec3(10, 10, 10));
+  const auto find = [&](const Vec3& p) {
+    for (std::size_t v = 0; v < b.vertices.size(); ++v)
+      if (b.vertices[v] == p) return static_cast<int>(v);
+    return -1;
+  };
+  const int u = find(Vec3(5, 10, 10)), w = find(Vec3(10, 10, 10));
+  ASSERT_GE(u, 0);
+  ASSERT_GE(w, 0);
+  const int m = static_cast<int>(b.vertices.size());
+  b.vertices.push_back(Vec3(7.5, 10, 10));
+  bool split = false;
+  for (std::size_t f = 0; f < b.faces.size() && !split; ++f) {
+    Triangle t = b.faces[f];
+    for (int k = 0; k < 3 && !split; ++k) {
+      const int p = t[static_cast<std::size_t>(k)], q = t[static_cast<std::size_t>((k + 1) % 3)],
+                r = t[static_cast<std::size_t>((k + 2) % 3)];
+      if (!((p == u && q == w) || (p == w && q == u))) continue;
+      b.faces[f] = Triangle{p, m, r};
+      b.faces.push_back(Triangle{m, q, r});
+      b.faces.push_back(Triangle{q, m, p});  // zero area: p, m, q on one line
+      split = true;
+    }
+  }
+  ASSERT_TRUE(split);
+  EXPECT_THROW(detail::exact_blocks_overlap(a, b), std::exception);  // no exact boolean on B
+  MillToleranceOptions o;
+  o.tolerance = 1.5;
+  const MillToleranceResult r = mill_within_tolerance(solid, {Block{a, Axis::PosZ, 0}, Block{b, Axis::PosZ, 1}}, o);
+  ASSERT_EQ(r.blocks.size(), 2u);
+  EXPECT_EQ(r.filled[0], 1);
+  EXPECT_EQ(r.filled[1], 0);
+  EXPECT_TRUE(r.failures[0].empty()) << r.failures[0];
+  EXPECT_TRUE(r.failures[1].empty()) << r.failures[1];
+  EXPECT_GE(r.deviation[0], 1.0 - 1e-9);  // the groove filled: 1 deep
 }
 
 }  // namespace

@@ -11,7 +11,9 @@
 //!      out" of the input);
 //!   2. it overlaps no other block (a bound from the boxes, then the exact
 //!      intersection volume <= collision_tolerance x the smaller, as
-//!      validate's overlap check);
+//!      validate's overlap check); the carved blocks do not overlap, so only
+//!      the pairs where a block's fill (the boxes fill_columns() gives) meets
+//!      the other's box are checked;
 //!   3. the model then made, the input with every block that sticks out,
 //!      stays within T of the input near it: FillDeviationMeter (exact
 //!      booleans, bounded-error Hausdorff distances both ways), measured
@@ -73,7 +75,8 @@ struct MillToleranceResult {
 //! Milled shapes of the carved blocks, measured against the tolerance (see
 //! the file comment). Parallel over blocks and pairs; deterministic.
 //! \param solid  the solid the blocks were carved from (canonical frame)
-//! \param blocks the carved blocks (carve_blocks() under allowances)
+//! \param blocks the carved blocks (carve_blocks() under allowances): closed
+//!        solids whose interiors are pairwise disjoint
 MillToleranceResult mill_within_tolerance(const Mesh& solid, std::vector<Block> blocks,
                                           const MillToleranceOptions& options);
 
