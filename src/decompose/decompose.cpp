@@ -1387,8 +1387,9 @@ DecomposeResult decompose_once(const Mesh& input, const DecomposeOptions& option
       // sees, but grow's refinement can still find no valid box at a corner
       // the repair left tight: its rounded midpoints tilt a sub-triangle of a
       // face parallel to an axis by a hair, which then faces away from that
-      // axis (part.off in its input frame, --no-orient: a vertex where two
-      // axes stay open, one closed by such a tilt). The repair has not made
+      // axis (part.off in its input frame, --no-orient: a split of a vertical
+      // face at the repaired corner faces a hair downwards and closes +z for
+      // the faces around it). The repair has not made
       // the model decomposable, so at the default this is the repair giving
       // up: decompose() goes on within the fallback tolerance.
       if (!repaired || !options.repair) throw;

@@ -84,7 +84,8 @@ MillToleranceResult mill_within_tolerance(const Mesh& solid, std::vector<Block> 
   // The carved blocks do not overlap, so two milled shapes M_i = C_i + G_i
   // and M_j can overlap only where a fill G meets the other shape: a pair
   // none of whose fill boxes (fill_columns(), covering G) meets the other's
-  // box in its interior cannot collide (max planck at 3.3e-3: most pairs).
+  // box in its interior cannot collide (max planck at 3.3e-3: the exact
+  // checks had been 33 of its mill stages' 58 s).
   const auto fill_meets = [&](std::size_t k, const BoundingBox& other) {
     if (!r.filled[k]) return false;
     if (!fill[k]) return true;  // the fill is not bounded: the whole shape

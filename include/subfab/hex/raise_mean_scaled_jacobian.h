@@ -57,7 +57,7 @@ struct RaiseMeanScaledJacobianOptions {
                              // patches the held-vertex stage leaves under 0.5 (rocker arm .901 instead of .906)
   int max_sweeps = 100;      // sweeps over every vertex, at most (25 and 2e-4 until session 32: rocker arm .906 with
                              // a slide of 0.1; 100 and 2e-5 with 0.25: .911, every model under 7.5 s idle)
-  double min_gain = 2e-5;    // stop when two sweeps in a row raise the best average scaled Jacobian by less than this
+  double min_gain = 2e-5;    // stop when five sweeps in a row raise the best average scaled Jacobian by less than this
   int moves_per_visit = 1;   // line searches per vertex visit (2 or 3: the same quality per unit of time)
   double over_relaxation = 1.8;  // the visit's displacement times this, if still valid and lower (1: plain Gauss-Seidel)
   double active_move = 1e-3;  // after the first sweep, a vertex is visited only if a vertex of its hexahedra moved
