@@ -124,32 +124,19 @@ TEST(MillWithinTolerance, ABlockTheFillCannotReachIsNoCollisionEvenWithAZeroArea
   const Mesh solid = voxel_mesh(grooved_box_cells());
   const Mesh a = voxel_mesh(rest);
   // B: the notch as a box whose top edge (5,10,10)-(10,10,10) gets a midpoint
-  // m and the zero-area face (a, m, b) beside the top triangle it splits.
+  // and a zero-area face on that edge (test::with_zero_area_face()).
   Mesh b = test::box_solid(Vec3(5, 5, 7), Vec3(10, 10, 10));
-  const auto find = [&](const Vec3& p) {
-    for (std::size_t v = 0; v < b.vertices.size(); ++v)
-      if (b.vertices[v] == p) return static_cast<int>(v);
-    return -1;
-  };
-  const int u = find(Vec3(5, 10, 10)), w = find(Vec3(10, 10, 10));
-  ASSERT_GE(u, 0);
-  ASSERT_GE(w, 0);
-  const int m = static_cast<int>(b.vertices.size());
-  b.vertices.push_back(Vec3(7.5, 10, 10));
-  bool split = false;
-  for (std::size_t f = 0; f < b.faces.size() && !split; ++f) {
-    Triangle t = b.faces[f];
-    for (int k = 0; k < 3 && !split; ++k) {
-      const int p = t[static_cast<std::size_t>(k)], q = t[static_cast<std::size_t>((k + 1) % 3)],
-                r = t[static_cast<std::size_t>((k + 2) % 3)];
-      if (!((p == u && q == w) || (p == w && q == u))) continue;
-      b.faces[f] = Triangle{p, m, r};
-      b.faces.push_back(Triangle{m, q, r});
-      b.faces.push_back(Triangle{q, m, p});  // zero area: p, m, q on one line
-      split = true;
+  const auto at = [&](int v) { return b.vertices[static_cast<std::size_t>(v)]; };
+  std::size_t face = b.faces.size();
+  int corner = -1;
+  for (std::size_t f = 0; f < b.faces.size() && corner < 0; ++f)
+    for (int k = 0; k < 3 && corner < 0; ++k) {
+      const Vec3 p = at(b.faces[f][static_cast<std::size_t>(k)]), q = at(b.faces[f][static_cast<std::size_t>((k + 1) % 3)]);
+      if (p.z() == 10 && q.z() == 10 && p.y() == 10 && q.y() == 10) face = f, corner = k;
     }
-  }
-  ASSERT_TRUE(split);
+  ASSERT_GE(corner, 0);
+  b = test::with_zero_area_face(b, face, corner);
+  ASSERT_TRUE(check_closed_solid(b).ok());
   EXPECT_THROW(detail::exact_blocks_overlap(a, b), std::exception);  // no exact boolean on B
   MillToleranceOptions o;
   o.tolerance = 1.5;

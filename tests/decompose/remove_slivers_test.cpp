@@ -427,12 +427,7 @@ TEST(RemoveSlivers, ANeighbourWithAZeroAreaFaceIsCleanedBeforeTheThickening) {
         n.vertices[static_cast<std::size_t>(n.faces[f][2])].z() == 10)
       top = f;
   ASSERT_LT(top, n.faces.size());
-  const auto [a, b, c] = std::tuple{n.faces[top][0], n.faces[top][1], n.faces[top][2]};
-  const int m = static_cast<int>(n.vertices.size());
-  n.vertices.push_back(0.5 * (n.vertices[static_cast<std::size_t>(a)] + n.vertices[static_cast<std::size_t>(b)]));
-  n.faces[top] = {a, m, c};
-  n.faces.push_back({m, b, c});
-  n.faces.push_back({m, a, b});  // zero area
+  n = test::with_zero_area_face(n, top, 0);
   ASSERT_TRUE(check_closed_solid(n).ok());
   SliverRemovalOptions o = within_half();
   o.max_height = 10.2;

@@ -82,6 +82,23 @@ inline HeightBox make_height_box(const Vec3& min, const Vec3& max, Axis axis) {
   return h;
 }
 
+//! `m` with a zero-area face, as rounding leaves them in blocks until the
+//! export cleans them: edge k of face `face` (from its corner k to the next)
+//! split at its midpoint M, the face replaced by its two halves and the
+//! collinear face (M, corner k, corner k + 1) closing the mesh against the
+//! neighbour across that edge. Still a closed, consistently oriented mesh.
+inline Mesh with_zero_area_face(Mesh m, std::size_t face, int k) {
+  const Triangle t = m.faces[face];
+  const int p = t[static_cast<std::size_t>(k)], q = t[static_cast<std::size_t>((k + 1) % 3)],
+            r = t[static_cast<std::size_t>((k + 2) % 3)];
+  const int mid = static_cast<int>(m.vertices.size());
+  m.vertices.push_back(0.5 * (m.vertices[static_cast<std::size_t>(p)] + m.vertices[static_cast<std::size_t>(q)]));
+  m.faces[face] = {p, mid, r};
+  m.faces.push_back({mid, q, r});
+  m.faces.push_back({mid, p, q});  // zero area
+  return m;
+}
+
 //! Translates a mesh.
 inline Mesh translated(Mesh m, const Vec3& t) {
   for (Vec3& v : m.vertices) v += t;
