@@ -5,6 +5,7 @@
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
 
 #include "geometry/deterministic_arena.h"
+#include "subfab/checks/check_self_intersections.h"
 #include "subfab/validate/validate_decomposition.h"
 #include "validate/validate_booleans.h"
 
@@ -49,6 +50,24 @@ bool overlaps_a_block(const Mesh& m, const std::vector<Block>& blocks, const std
     }
   }
   return false;
+}
+
+std::unique_ptr<SolidIndex> boolean_ready_index(const Mesh& block) {
+  if (count_degenerate_faces(block) > 0 || check_self_intersections(block).failed()) return nullptr;
+  return std::make_unique<SolidIndex>(block);
+}
+
+bool fill_misses_solid(const std::vector<BoundingBox>& fill, const SolidIndex& index, const BoundingBox& solid_box) {
+  for (const BoundingBox& b : fill) {
+    if (!interiors_meet(b, solid_box)) continue;
+    Box3 open;
+    open.min = b.min.cwiseMax(solid_box.min);
+    open.max = b.max.cwiseMin(solid_box.max);
+    // no face crosses the open box: it lies all inside or all outside, as
+    // the point just inside its min corner (is_inside()'s perturbation)
+    if (index.any_face_meets_open_box(open) || index.is_inside(open.min)) return false;
+  }
+  return true;
 }
 
 std::optional<Mesh> exact_block_union(const std::vector<const Mesh*>& meshes,

@@ -7,11 +7,13 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <optional>
 #include <vector>
 
 #include "geometry/box_tests.h"
 #include "geometry/exact_mesh.h"
+#include "geometry/solid_index.h"
 #include "subfab/decompose/carve_blocks.h"
 
 namespace subfab::detail {
@@ -35,6 +37,19 @@ bool within_limits(const BoundingBox& box, Axis axis, double max_height, const V
 bool overlaps_a_block(const Mesh& m, const std::vector<Block>& blocks, const std::vector<BoundingBox>& boxes,
                       const std::vector<double>& volumes, const std::function<bool(std::size_t)>& skip,
                       double tolerance);
+
+//! The SolidIndex of a block the exact booleans accept (no degenerate face,
+//! no self-intersection: its exact inside test is then meaningful), else
+//! nullptr.
+std::unique_ptr<SolidIndex> boolean_ready_index(const Mesh& block);
+
+//! Exact: does the interior of the solid `index` indexes (bounding box
+//! `solid_box`) miss the open interior of every box of `fill` (each
+//! clipped to `solid_box`)? For each box: no face of the solid meets it,
+//! and a point just inside it is outside the solid. Two milled shapes whose
+//! carved blocks do not overlap cannot overlap when each one's interior
+//! misses the other's fill boxes (fill_columns()).
+bool fill_misses_solid(const std::vector<BoundingBox>& fill, const SolidIndex& index, const BoundingBox& solid_box);
 
 //! The union of blocks a and b, computed exactly (CGAL corefinement on the
 //! exact kernel, in a private DeterministicArena) and rounded to doubles

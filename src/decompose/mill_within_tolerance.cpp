@@ -4,11 +4,13 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
 
 #include "decompose/block_pairs_detail.h"
+#include "geometry/solid_index.h"
 #include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
 #include "subfab/geometry/axis.h"
@@ -86,25 +88,57 @@ MillToleranceResult mill_within_tolerance(const Mesh& solid, std::vector<Block> 
   // none of whose fill boxes (fill_columns(), covering G) meets the other's
   // box in its interior cannot collide (max planck at 3.3e-3: the exact
   // checks had been 33 of its mill stages' 58 s).
-  const auto fill_meets = [&](std::size_t k, const BoundingBox& other) {
-    if (!r.filled[k]) return false;
-    if (!fill[k]) return true;  // the fill is not bounded: the whole shape
-    return std::any_of(fill[k]->begin(), fill[k]->end(),
-                       [&](const BoundingBox& b) { return detail::interiors_meet(b, other); });
+  // The overlap then lies in the box around those meetings (`region`): the
+  // exact check clips both shapes near it (their shared cut faces elsewhere
+  // cost the corefinement most: max planck at 3.3e-3, 40 % of the run).
+  const auto extend_by_fill = [&](std::size_t k, const BoundingBox& other, BoundingBox& region) {
+    if (!r.filled[k]) return;
+    if (!fill[k]) {  // the fill is not bounded: the whole shape
+      region.extend(boxes[k].min.cwiseMax(other.min));
+      region.extend(boxes[k].max.cwiseMin(other.max));
+      return;
+    }
+    for (const BoundingBox& b : *fill[k])
+      if (detail::interiors_meet(b, other)) {
+        region.extend(b.min.cwiseMax(other.min));
+        region.extend(b.max.cwiseMin(other.max));
+      }
   };
   std::vector<std::pair<std::size_t, std::size_t>> pairs;
+  std::vector<BoundingBox> regions;
   for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = i + 1; j < n; ++j)
-      if ((r.filled[i] || r.filled[j]) && detail::interiors_meet(boxes[i], boxes[j]) &&
-          (fill_meets(i, boxes[j]) || fill_meets(j, boxes[i])))
-        pairs.emplace_back(i, j);
+    for (std::size_t j = i + 1; j < n; ++j) {
+      if (!(r.filled[i] || r.filled[j]) || !detail::interiors_meet(boxes[i], boxes[j])) continue;
+      BoundingBox region;
+      extend_by_fill(i, boxes[j], region);
+      extend_by_fill(j, boxes[i], region);
+      if (region.is_empty()) continue;
+      pairs.emplace_back(i, j);
+      regions.push_back(region);
+    }
+  // Most such pairs do not collide (max planck and bimba: 1 of 137): their
+  // shapes are proven apart without a boolean where the interior of each
+  // misses every fill box of the other (detail::fill_misses_solid()).
+  std::vector<std::unique_ptr<detail::SolidIndex>> index(n);
+  {
+    std::vector<char> used(n, 0);
+    for (const auto& [i, j] : pairs) used[i] = used[j] = 1;
+    parallel_for(0, n, [&](std::size_t k) {
+      if (used[k]) index[k] = detail::boolean_ready_index(blocks[k].mesh);
+    });
+  }
+  const auto fill_misses = [&](std::size_t k, std::size_t other) {
+    if (!r.filled[k]) return true;
+    return fill[k] && detail::fill_misses_solid(*fill[k], *index[other], boxes[other]);
+  };
   std::vector<char> collides(pairs.size(), 0);
   parallel_for(0, pairs.size(), [&](std::size_t p) {
     const auto [i, j] = pairs[p];
     const double allowed = options.collision_tolerance * std::min(volumes[i], volumes[j]);
     if (overlap_volume_bound(blocks[i].mesh, blocks[j].mesh, Eigen::Matrix3d::Identity()) <= allowed) return;
+    if (index[i] && index[j] && fill_misses(i, j) && fill_misses(j, i)) return;
     try {
-      collides[p] = detail::exact_blocks_overlap(blocks[i].mesh, blocks[j].mesh) > allowed ? 1 : 0;
+      collides[p] = detail::exact_blocks_overlap(blocks[i].mesh, blocks[j].mesh, regions[p]) > allowed ? 1 : 0;
     } catch (const std::exception&) {
       collides[p] = 1;
     }

@@ -175,8 +175,9 @@ bool clip_to(ExactMesh& m, const BoundingBox& box) {
   return guarded([&] { return PMP::clip(m, cuboid, CGAL::parameters::clip_volume(true)); });
 }
 
-//! blocks_overlap() with its volumes evaluated by `mode`.
-double overlap_volume(const Mesh& a, const Mesh& b, Volume mode) {
+//! blocks_overlap() with its volumes evaluated by `mode`; `within`, when
+//! given, a closed box known to hold a ∩ b up to a zero volume.
+double overlap_volume(const Mesh& a, const Mesh& b, Volume mode, const BoundingBox* within = nullptr) {
   const BoundingBox ba = bounding_box(a), bb = bounding_box(b);
   if (!detail::interiors_meet(ba, bb)) return 0.0;
   require_boolean_input(a, "a block", true);
@@ -192,13 +193,33 @@ double overlap_volume(const Mesh& a, const Mesh& b, Volume mode) {
   common.min = ba.min.cwiseMax(bb.min);
   common.max = ba.max.cwiseMin(bb.max);
   const double margin = 1e-3 * (common.max - common.min).norm();
-  common.min.array() -= margin;
-  common.max.array() += margin;
+  // Within a smaller box `within` (milled shapes: the boxes of their fills),
+  // its planes may cut both blocks: a is clipped to it widened by the
+  // margin, b by twice the margin, so a's cut faces lie inside b's clipped
+  // piece and b's outside a's (no two cut faces share a plane). Where a
+  // side of `within` lies within twice the margin of the common box's, both
+  // take the common box's side widened by the margin (a plane
+  // beyond one block's bounding plane: it cuts the other block only).
+  BoundingBox box_a = common, box_b = common;
+  for (int k = 0; k < 3; ++k) {
+    box_a.min[k] = box_b.min[k] = common.min[k] - margin;
+    box_a.max[k] = box_b.max[k] = common.max[k] + margin;
+    if (!within) continue;
+    if (within->max[k] <= common.min[k] || within->min[k] >= common.max[k]) return 0.0;  // no volume in common
+    if (within->min[k] - 2 * margin > common.min[k]) {
+      box_a.min[k] = within->min[k] - margin;
+      box_b.min[k] = within->min[k] - 2 * margin;
+    }
+    if (within->max[k] + 2 * margin < common.max[k]) {
+      box_a.max[k] = within->max[k] + margin;
+      box_b.max[k] = within->max[k] + 2 * margin;
+    }
+  }
   {
     ExactMesh ea = detail::to_exact(a), eb = detail::to_exact(b);
     bool clipped = false;
     try {
-      clipped = clip_to(ea, common) && clip_to(eb, common);
+      clipped = clip_to(ea, box_a) && clip_to(eb, box_b);
     } catch (const AlgorithmError&) {
       clipped = false;  // fall back to the whole blocks
     }
@@ -232,6 +253,10 @@ double outside_volume(const Mesh& block, const Mesh& solid, Volume mode) {
 double blocks_overlap(const Mesh& a, const Mesh& b) { return overlap_volume(a, b, Volume::Rounded); }
 
 double detail::exact_blocks_overlap(const Mesh& a, const Mesh& b) { return overlap_volume(a, b, Volume::Exact); }
+
+double detail::exact_blocks_overlap(const Mesh& a, const Mesh& b, const BoundingBox& within) {
+  return overlap_volume(a, b, Volume::Exact, &within);
+}
 
 double nef_boolean_volume(const Mesh& a, const Mesh& b, NefBoolean op) {
   require_boolean_input(a, "the first solid");

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "decompose/block_pairs_detail.h"
 #include "subfab/core/error.h"
 #include "subfab/validate/milled_shape.h"
 #include "subfab/validate/validate_decomposition.h"
@@ -147,6 +148,83 @@ TEST(MillWithinTolerance, ABlockTheFillCannotReachIsNoCollisionEvenWithAZeroArea
   EXPECT_TRUE(r.failures[0].empty()) << r.failures[0];
   EXPECT_TRUE(r.failures[1].empty()) << r.failures[1];
   EXPECT_GE(r.deviation[0], 1.0 - 1e-9);  // the groove filled: 1 deep
+}
+
+// The mill stage proves a pair of milled shapes apart without a boolean when
+// each one's interior misses the other's fill boxes (fill_misses_solid()):
+// known answers on the L prism ([0,2]^2 minus [1,2]^2 in xy, z in [0,1]).
+TEST(MillWithinTolerance, AFillBoxMissesASolidOnlyWhenNoFaceCrossesItAndItLiesOutside) {
+  const Mesh l = test::l_solid();
+  const std::unique_ptr<detail::SolidIndex> index = detail::boolean_ready_index(l);
+  ASSERT_NE(index, nullptr);
+  const BoundingBox box = bounding_box(l);
+  const auto misses = [&](const Vec3& lo, const Vec3& hi) {
+    BoundingBox b;
+    b.extend(lo);
+    b.extend(hi);
+    return detail::fill_misses_solid({b}, *index, box);
+  };
+  EXPECT_TRUE(misses(Vec3(1, 1, 0), Vec3(2, 2, 1)));           // the notch: faces only on its sides
+  EXPECT_TRUE(misses(Vec3(1.2, 1.2, 0.2), Vec3(1.8, 1.8, 0.8)));  // inside the notch
+  EXPECT_TRUE(misses(Vec3(1, 1, -5), Vec3(3, 3, 5)));          // beyond the bounding box: clipped to the notch
+  EXPECT_TRUE(misses(Vec3(5, 5, 5), Vec3(6, 6, 6)));           // far away
+  EXPECT_TRUE(misses(Vec3(2, 0, 0), Vec3(3, 1, 1)));           // touching the side x = 2 only
+  EXPECT_FALSE(misses(Vec3(0.2, 0.2, 0.2), Vec3(0.4, 0.4, 0.4)));  // inside the solid, no face crossing it
+  EXPECT_FALSE(misses(Vec3(0.5, 0.5, 0.5), Vec3(1.5, 1.5, 1.5)));  // across the notch's corner
+  EXPECT_FALSE(misses(Vec3(0.9, 1, 0), Vec3(2, 2, 1)));        // a hair into the arm x < 1
+  // every box of the list must miss
+  BoundingBox notch, inside;
+  notch.extend(Vec3(1, 1, 0));
+  notch.extend(Vec3(2, 2, 1));
+  inside.extend(Vec3(0.2, 0.2, 0.2));
+  inside.extend(Vec3(0.4, 0.4, 0.4));
+  EXPECT_FALSE(detail::fill_misses_solid({notch, inside}, *index, box));
+  // a block the exact booleans refuse gets no index (the pair is then checked exactly, and fails)
+  EXPECT_EQ(detail::boolean_ready_index(test::with_zero_area_face(test::box_solid(Vec3(0, 0, 0), Vec3(1, 1, 1)), 0, 0)),
+            nullptr);
+}
+
+// The exact overlap clipped near a box known to hold it is the same volume:
+// the L prism and a box over its arm x < 1 (overlap [0.5, 1] x [1.5, 2] x
+// [0, 1], volume 0.25), clipped in x well inside their common box.
+TEST(MillWithinTolerance, TheOverlapClippedNearItsFillIsTheSameVolume) {
+  const Mesh l = test::l_solid();
+  const Mesh b = test::box_solid(Vec3(0.5, 1.5, -1), Vec3(1.5, 2.5, 2));
+  BoundingBox within;
+  within.extend(Vec3(0.4, 1.4, -0.1));
+  within.extend(Vec3(1.1, 2.1, 1.1));
+  EXPECT_NEAR(detail::exact_blocks_overlap(l, b), 0.25, 1e-12);
+  EXPECT_EQ(detail::exact_blocks_overlap(l, b, within), detail::exact_blocks_overlap(l, b));
+  EXPECT_EQ(detail::exact_blocks_overlap(b, l, within), detail::exact_blocks_overlap(l, b));
+  BoundingBox apart;  // no volume of the common box in it
+  apart.extend(Vec3(3, 3, 3));
+  apart.extend(Vec3(4, 4, 4));
+  EXPECT_EQ(detail::exact_blocks_overlap(l, b, apart), 0.0);
+}
+
+// A fill that does reach the other block is still a collision: a mushroom
+// (stem [4,6]^2 x [0,5], cap [2,8]^2 x [5,7]) milled along +z fills under
+// its cap down to z = 0, where a second block [7,8] x [4,6] x [0,5] stands.
+TEST(MillWithinTolerance, AFillReachingAnotherBlockIsACollision) {
+  std::set<test::Cell> stem = test::cells_of_box({4, 4, 0}, {6, 6, 5});
+  std::set<test::Cell> cap = test::cells_of_box({2, 2, 5}, {8, 8, 7});
+  std::set<test::Cell> post = test::cells_of_box({7, 4, 0}, {8, 6, 5});
+  std::set<test::Cell> mushroom = stem, all;
+  mushroom.insert(cap.begin(), cap.end());
+  all = mushroom;
+  all.insert(post.begin(), post.end());
+  const Mesh solid = test::voxel_mesh(all);
+  const Mesh a = test::voxel_mesh(mushroom);
+  const Mesh b = test::voxel_mesh(post);
+  MillToleranceOptions o;
+  o.tolerance = 50;  // the fill's deviation does not matter here
+  const MillToleranceResult r = mill_within_tolerance(solid, {Block{a, Axis::PosZ, 0}, Block{b, Axis::PosZ, 1}}, o);
+  ASSERT_EQ(r.blocks.size(), 2u);
+  EXPECT_EQ(r.filled[0], 1);
+  EXPECT_EQ(r.filled[1], 0);
+  EXPECT_EQ(r.failures[0], "its milled shape overlaps block 2");
+  EXPECT_TRUE(r.failures[1].empty()) << r.failures[1];
+  EXPECT_NEAR(detail::exact_blocks_overlap(r.blocks[0].mesh, b), 10.0, 1e-9);  // [7,8] x [4,6] x [0,5]
 }
 
 }  // namespace
