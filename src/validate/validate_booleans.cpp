@@ -416,7 +416,7 @@ detail::OutsidePart detail::outside_part(const Mesh& block, const Mesh& solid) {
   // fallback below reports it, outside the arena.
   if (detail::run_in_arena([&] { outside_in_arena(block, solid, tree, triangles, ids, out); }).empty() && out)
     return std::move(*out);
-  return {volume_outside(block, solid), std::nullopt, std::nullopt};
+  return {volume_outside(block, solid), std::nullopt, std::nullopt, {}};
 }
 
 CoverageReport surface_coverage(const Mesh& input, const std::vector<const Mesh*>& blocks,
