@@ -52,7 +52,7 @@ bool overlaps_a_block(const Mesh& m, const std::vector<Block>& blocks, const std
   return false;
 }
 
-std::unique_ptr<SolidIndex> boolean_ready_index(const Mesh& block) {
+std::unique_ptr<SolidIndex> inside_test_index(const Mesh& block) {
   if (count_degenerate_faces(block) > 0 || check_self_intersections(block).failed()) return nullptr;
   return std::make_unique<SolidIndex>(block);
 }

@@ -38,10 +38,12 @@ bool overlaps_a_block(const Mesh& m, const std::vector<Block>& blocks, const std
                       const std::vector<double>& volumes, const std::function<bool(std::size_t)>& skip,
                       double tolerance);
 
-//! The SolidIndex of a block the exact booleans accept (no degenerate face,
-//! no self-intersection: its exact inside test is then meaningful), else
-//! nullptr.
-std::unique_ptr<SolidIndex> boolean_ready_index(const Mesh& block);
+//! The SolidIndex of a block the exact booleans accept (no zero-area face,
+//! no self-intersection, exact checks: its inside test is then
+//! meaningful), else nullptr. (A zero-area face left by rounding makes its
+//! neighbours overlap along a segment, which the self-intersection check
+//! reports anyway.)
+std::unique_ptr<SolidIndex> inside_test_index(const Mesh& block);
 
 //! Exact: does the interior of the solid `index` indexes (bounding box
 //! `solid_box`) miss the open interior of every box of `fill` (each

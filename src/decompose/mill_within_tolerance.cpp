@@ -57,6 +57,7 @@ MillToleranceResult mill_within_tolerance(const Mesh& solid, std::vector<Block> 
   // 1. milled shapes, and the boxes that cover what they add (fill_columns())
   std::atomic<std::size_t> done{0};
   std::vector<std::optional<std::vector<BoundingBox>>> fill(n);
+  std::vector<std::vector<BoundingBox>> columns(n);  // the finer cover before the tiling (fill_face_columns())
   parallel_for(0, n, [&](std::size_t i) {
     const Vec3 d = axis_direction(blocks[i].axis);
     try {
@@ -65,7 +66,11 @@ MillToleranceResult mill_within_tolerance(const Mesh& solid, std::vector<Block> 
         if (!check_closed_solid(m.mesh).ok() || !is_height_field(m.mesh, d))
           r.failures[i] = "its milled shape is not a closed 2-manifold height field";
         else {
-          fill[i] = fill_columns(blocks[i].mesh, m.mesh, blocks[i].axis);
+          std::optional<std::vector<BoundingBox>> faces = fill_face_columns(blocks[i].mesh, m.mesh, blocks[i].axis);
+          if (faces) {
+            fill[i] = faces->empty() ? *faces : tile_columns(*faces, m.mesh, blocks[i].axis);
+            columns[i] = std::move(*faces);
+          }
           blocks[i].mesh = std::move(m.mesh);
           r.filled[i] = 1;
         }
@@ -131,21 +136,28 @@ MillToleranceResult mill_within_tolerance(const Mesh& solid, std::vector<Block> 
   {
     std::vector<char> used(n, 0);
     for (std::size_t p = 0; p < pairs.size(); ++p)
-      if (unsettled[p]) used[pairs[p].first] = used[pairs[p].second] = 1;
+      if (unsettled[p]) {
+        const auto [i, j] = pairs[p];
+        if (r.filled[i]) used[j] = 1;  // the other's interior against a block's fill
+        if (r.filled[j]) used[i] = 1;
+      }
     parallel_for(0, n, [&](std::size_t k) {
-      if (used[k]) index[k] = detail::boolean_ready_index(blocks[k].mesh);
+      if (used[k]) index[k] = detail::inside_test_index(blocks[k].mesh);
     });
   }
   const auto fill_misses = [&](std::size_t k, std::size_t other) {
     if (!r.filled[k]) return true;
-    return fill[k] && detail::fill_misses_solid(*fill[k], *index[other], boxes[other]);
+    if (!fill[k] || !index[other]) return false;
+    // the tiles first, then (a neighbour's face crossing a tile) every column
+    return detail::fill_misses_solid(*fill[k], *index[other], boxes[other]) ||
+           detail::fill_misses_solid(columns[k], *index[other], boxes[other]);
   };
   std::vector<char> collides(pairs.size(), 0);
   std::atomic<std::size_t> num_exact{0};
   parallel_for(0, pairs.size(), [&](std::size_t p) {
     if (!unsettled[p]) return;
     const auto [i, j] = pairs[p];
-    if (index[i] && index[j] && fill_misses(i, j) && fill_misses(j, i)) return;
+    if (fill_misses(i, j) && fill_misses(j, i)) return;
     ++num_exact;
     const double allowed = options.collision_tolerance * std::min(volumes[i], volumes[j]);
     try {
@@ -247,7 +259,7 @@ MillToleranceResult mill_within_tolerance(const Mesh& solid, std::vector<Block> 
     std::vector<FillPart> view(all_filled.size());
     for (std::size_t k = 0; k < ids.size(); ++k)
       if (parts[k]) view[slot[ids[k]]] = {parts[k]->faces(), &parts[k]->on_input};
-    FillDeviationUpperBounds upper;
+      FillDeviationUpperBounds upper;
     try {
       upper = fill_deviation_upper_bounds(solid, all_filled, view, {.error = error, .stop = options.tolerance});
     } catch (const std::exception&) {

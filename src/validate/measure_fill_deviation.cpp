@@ -359,7 +359,7 @@ int facing(const Mesh& m, const Triangle& f, int k, int s) {
 
 }  // namespace
 
-std::optional<std::vector<BoundingBox>> fill_columns(const Mesh& carved, const Mesh& milled, Axis axis) {
+std::optional<std::vector<BoundingBox>> fill_face_columns(const Mesh& carved, const Mesh& milled, Axis axis) {
   const int k = axis_index(axis) / 2, s = axis_index(axis) % 2 == 0 ? 1 : -1;
   auto h = [&](const Vec3& v) { return s * v[k]; };
   if (carved.vertices.empty()) return std::vector<BoundingBox>{};
@@ -431,6 +431,12 @@ std::optional<std::vector<BoundingBox>> fill_columns(const Mesh& carved, const M
   };
   for (const Triangle& f : milled.faces)
     if (facing(milled, f, k, s) > 0 && !on_carved(f)) add(milled, f);
+  return boxes;
+}
+
+std::vector<BoundingBox> tile_columns(const std::vector<BoundingBox>& boxes, const Mesh& milled, Axis axis) {
+  const int k = axis_index(axis) / 2;
+  const int i = (k + 1) % 3, j = (k + 2) % 3;
   // One box per tile of an 8 x 8 grid over the block's footprint (the
   // tile of each face's lowest corner): a ring of fill (a groove round the
   // block) gives the tiles along it, not one box over the whole block.
@@ -446,6 +452,12 @@ std::optional<std::vector<BoundingBox>> fill_columns(const Mesh& carved, const M
   std::vector<BoundingBox> out;
   for (const auto& [key, b] : tiles) out.push_back(b);
   return out;
+}
+
+std::optional<std::vector<BoundingBox>> fill_columns(const Mesh& carved, const Mesh& milled, Axis axis) {
+  std::optional<std::vector<BoundingBox>> columns = fill_face_columns(carved, milled, axis);
+  if (!columns || columns->empty()) return columns;
+  return tile_columns(*columns, milled, axis);
 }
 
 std::vector<BoundingBox> solid_columns(const Mesh& part, double merge_distance) {

@@ -11,6 +11,7 @@
 
 #include "decompose/block_pairs_detail.h"
 #include "subfab/core/error.h"
+#include "subfab/validate/measure_fill_deviation.h"
 #include "subfab/validate/milled_shape.h"
 #include "subfab/validate/validate_decomposition.h"
 #include "support/block_test_shapes.h"
@@ -155,7 +156,7 @@ TEST(MillWithinTolerance, ABlockTheFillCannotReachIsNoCollisionEvenWithAZeroArea
 // known answers on the L prism ([0,2]^2 minus [1,2]^2 in xy, z in [0,1]).
 TEST(MillWithinTolerance, AFillBoxMissesASolidOnlyWhenNoFaceCrossesItAndItLiesOutside) {
   const Mesh l = test::l_solid();
-  const std::unique_ptr<detail::SolidIndex> index = detail::boolean_ready_index(l);
+  const std::unique_ptr<detail::SolidIndex> index = detail::inside_test_index(l);
   ASSERT_NE(index, nullptr);
   const BoundingBox box = bounding_box(l);
   const auto misses = [&](const Vec3& lo, const Vec3& hi) {
@@ -179,9 +180,18 @@ TEST(MillWithinTolerance, AFillBoxMissesASolidOnlyWhenNoFaceCrossesItAndItLiesOu
   inside.extend(Vec3(0.2, 0.2, 0.2));
   inside.extend(Vec3(0.4, 0.4, 0.4));
   EXPECT_FALSE(detail::fill_misses_solid({notch, inside}, *index, box));
-  // a block the exact booleans refuse gets no index (the pair is then checked exactly, and fails)
-  EXPECT_EQ(detail::boolean_ready_index(test::with_zero_area_face(test::box_solid(Vec3(0, 0, 0), Vec3(1, 1, 1)), 0, 0)),
-            nullptr);
+  // A block the exact booleans refuse (a zero-area face, or crossing itself)
+  // gets no index: its pairs are checked exactly, and fail.
+  const Mesh cube = test::box_solid(Vec3(0, 0, 0), Vec3(1, 1, 1));
+  EXPECT_EQ(detail::inside_test_index(test::with_zero_area_face(cube, 0, 0)), nullptr);
+  Mesh crossing = cube;
+  const Mesh other = test::box_solid(Vec3(0.5, 0.5, 0.5), Vec3(1.5, 1.5, 1.5));
+  for (Triangle t : other.faces) {
+    for (int& v : t) v += static_cast<int>(cube.vertices.size());
+    crossing.faces.push_back(t);
+  }
+  crossing.vertices.insert(crossing.vertices.end(), other.vertices.begin(), other.vertices.end());
+  EXPECT_EQ(detail::inside_test_index(crossing), nullptr);
 }
 
 // The exact overlap clipped near a box known to hold it is the same volume:
@@ -216,6 +226,22 @@ TEST(MillWithinTolerance, AFillReachingAnotherBlockIsACollision) {
   const Mesh solid = test::voxel_mesh(all);
   const Mesh a = test::voxel_mesh(mushroom);
   const Mesh b = test::voxel_mesh(post);
+  // The fill's finer cover: one column per face of the cap's underside (z =
+  // 5, facing away from +z), each down to the base z = 0.
+  const MilledShape milled = milled_shape(a, Vec3(0, 0, 1));
+  const std::optional<std::vector<BoundingBox>> columns = fill_face_columns(a, milled.mesh, Axis::PosZ);
+  ASSERT_TRUE(columns.has_value());
+  ASSERT_FALSE(columns->empty());
+  BoundingBox covered;
+  for (const BoundingBox& c : *columns) {
+    EXPECT_EQ(c.min.z(), 0.0);
+    EXPECT_EQ(c.max.z(), 5.0);
+    covered.extend(c.min);
+    covered.extend(c.max);
+  }
+  EXPECT_EQ(covered.min, Vec3(2, 2, 0));
+  EXPECT_EQ(covered.max, Vec3(8, 8, 5));
+  EXPECT_LE(tile_columns(*columns, milled.mesh, Axis::PosZ).size(), columns->size());
   MillToleranceOptions o;
   o.tolerance = 50;  // the fill's deviation does not matter here
   const MillToleranceResult r = mill_within_tolerance(solid, {Block{a, Axis::PosZ, 0}, Block{b, Axis::PosZ, 1}}, o);

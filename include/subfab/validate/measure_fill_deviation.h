@@ -217,6 +217,15 @@ class FillDeviationMeter {
 //!         the whole block instead); an empty vector when nothing is added
 std::optional<std::vector<BoundingBox>> fill_columns(const Mesh& carved, const Mesh& milled, Axis axis);
 
+//! fill_columns() before the tiling: one column per face that can bound
+//! the fill from above (a finer cover, of many more boxes).
+std::optional<std::vector<BoundingBox>> fill_face_columns(const Mesh& carved, const Mesh& milled, Axis axis);
+
+//! fill_columns()'s tiling of such columns: one box per tile of an 8 x 8
+//! grid over the footprint of `milled` along `axis` (each column in the tile
+//! of its lowest corner).
+std::vector<BoundingBox> tile_columns(const std::vector<BoundingBox>& columns, const Mesh& milled, Axis axis);
+
 //! Closed boxes whose union covers a closed solid `part` (validate's check
 //! 10: part = block \ input, the material a block adds; with C = block ∩
 //! input the file comment's argument holds, C ⊆ S and C ⊆ F, so only the
