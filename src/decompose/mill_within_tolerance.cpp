@@ -249,9 +249,23 @@ MillToleranceResult mill_within_tolerance(const Mesh& solid, std::vector<Block> 
     // block: difference 11 s and distances 10 s against regions 9 s).
     if (ids.size() < 2) ids.clear();
     std::vector<std::optional<detail::OutsidePart>> parts(ids.size());
+    // Each part lies in its block's fill boxes: the difference sees only the
+    // block's faces near them (the box around them, widened by a margin so
+    // that no plane of it is a face's).
     parallel_for(0, ids.size(), [&](std::size_t k) {
+      std::optional<BoundingBox> within;
+      if (fill[ids[k]] && !fill[ids[k]]->empty()) {
+        BoundingBox& w = within.emplace();
+        for (const BoundingBox& b : *fill[ids[k]]) {
+          w.extend(b.min);
+          w.extend(b.max);
+        }
+        const double margin = 1e-3 * std::max(w.diagonal(), boxes[ids[k]].diagonal());
+        w.min.array() -= margin;
+        w.max.array() += margin;
+      }
       try {
-        parts[k] = detail::outside_part(blocks[ids[k]].mesh, solid);
+        parts[k] = detail::outside_part(blocks[ids[k]].mesh, solid, within ? &*within : nullptr);
       } catch (const std::exception&) {
         // no part: measured in regions
       }

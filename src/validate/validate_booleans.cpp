@@ -306,10 +306,24 @@ bool lies_on_solid(const detail::ExactPoint& a, const detail::ExactPoint& b, con
 //! The boolean of outside_part(), inside the caller's arena: fills `out`
 //! (under a SuspendArena) or leaves it empty when the corefinement cannot
 //! give a 2-manifold.
-void outside_in_arena(const Mesh& block, const Mesh& solid, const EpickTree& tree,
+void outside_in_arena(const Mesh& block, const Mesh& solid, const BoundingBox* within, const EpickTree& tree,
                       const std::vector<CGAL::Exact_predicates_inexact_constructions_kernel::Triangle_3>& triangles,
                       const std::vector<int>& ids, std::optional<detail::OutsidePart>& out) {
-  ExactMesh eb = detail::to_exact(block), es = detail::to_exact(solid), d;
+  // The block, clipped to `within` when given (block \ solid lies inside
+  // it): its faces far from the fill, most of them on the input's surface,
+  // then never meet the solid's in the corefinement. Where the clip fails or
+  // leaves nothing, the whole block.
+  const auto exact_block = [&] {
+    ExactMesh e = detail::to_exact(block);
+    if (!within) return e;
+    ExactMesh clipped = e;
+    try {
+      if (clip_to(clipped, *within) && clipped.number_of_faces() > 0) return clipped;
+    } catch (const AlgorithmError&) {
+    }
+    return e;
+  };
+  ExactMesh eb = exact_block(), es = detail::to_exact(solid), d;
   if (PMP::corefine_and_compute_difference(eb, es, d, kThrowOnSelfIntersection, kThrowOnSelfIntersection)) {
     const double volume = std::max(0.0, mesh_volume(d));
     std::vector<char> on_input;
@@ -332,7 +346,7 @@ void outside_in_arena(const Mesh& block, const Mesh& solid, const EpickTree& tre
   // of both inputs in place (Visitor.h, finalize()) before its output
   // builder finds that the result is not a 2-manifold.
   std::vector<ExactMesh> operands{std::move(eb), std::move(es)};
-  const std::vector<ExactMesh> given{detail::to_exact(block), detail::to_exact(solid)};
+  const std::vector<ExactMesh> given{exact_block(), detail::to_exact(solid)};
   std::vector<std::pair<std::size_t, detail::FaceIndex>> kept;
   if (!detail::difference_surface(operands, given, kept)) return;
   std::map<detail::ExactPoint, int, detail::ExactPointLess> index;
@@ -376,7 +390,7 @@ void outside_in_arena(const Mesh& block, const Mesh& solid, const EpickTree& tre
 
 }  // namespace
 
-detail::OutsidePart detail::outside_part(const Mesh& block, const Mesh& solid) {
+detail::OutsidePart detail::outside_part(const Mesh& block, const Mesh& solid, const BoundingBox* within) {
   // the solid's faces near the block, for the classification of the part's faces
   using Epick = CGAL::Exact_predicates_inexact_constructions_kernel;
   BoundingBox near = bounding_box(block);
@@ -414,7 +428,12 @@ detail::OutsidePart detail::outside_part(const Mesh& block, const Mesh& solid) {
   std::optional<OutsidePart> out;
   // CGAL may refuse an operand (a self-intersection near the cut): the
   // fallback below reports it, outside the arena.
-  if (detail::run_in_arena([&] { outside_in_arena(block, solid, tree, triangles, ids, out); }).empty() && out)
+  // `within` is used only when it cuts the block (a plane of it inside the block's box)
+  const BoundingBox own = bounding_box(block);
+  const bool cuts = within && ((within->min.array() > own.min.array()).any() || (within->max.array() < own.max.array()).any());
+  if (detail::run_in_arena([&] { outside_in_arena(block, solid, cuts ? within : nullptr, tree, triangles, ids, out); })
+          .empty() &&
+      out)
     return std::move(*out);
   return {volume_outside(block, solid), std::nullopt, std::nullopt, {}};
 }

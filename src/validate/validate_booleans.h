@@ -57,6 +57,11 @@ struct OutsidePart {
 //! (Clipping the input to the block's box first, with clip_solid_to_box(),
 //! was tried: no faster on airplane, and a segfault inside CGAL on kitten.)
 //! \throw AlgorithmError as volume_outside()
-OutsidePart outside_part(const Mesh& block, const Mesh& solid);
+//! `within`, when given: an open box known to hold block \\ solid (a
+//! milled shape's fill boxes, widened): the block is clipped to it first
+//! (exactly), so the boolean sees only the faces near the fill; the same
+//! part. It must not share a plane with a face of the block or the solid
+//! (widen the fill's boxes by a margin).
+OutsidePart outside_part(const Mesh& block, const Mesh& solid, const BoundingBox* within = nullptr);
 
 }  // namespace subfab::detail

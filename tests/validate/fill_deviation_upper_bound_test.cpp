@@ -134,5 +134,27 @@ TEST(FillDeviationUpperBound, AFilledNotchIsBoundedByItsDepth) {
   EXPECT_LE(b.from_input, 4.0 + 2 * kError);
 }
 
+// outside_part() clipped to a box known to hold the part (the mill stage: a
+// milled shape's fill boxes, widened) gives the same part: the column
+// [2, 4]^2 x [5, 13] in S = [0, 10]^3, clipped to a box round its part
+// [2, 4]^2 x [10, 13] that cuts it at z = 9.5 (and one beyond it in x, y).
+TEST(FillDeviationUpperBound, ThePartOutsideClippedNearItIsTheSame) {
+  const Mesh solid = make_box_mesh(Vec3(0, 0, 0), Vec3(10, 10, 10));
+  const Mesh column = make_box_mesh(Vec3(2, 2, 5), Vec3(4, 4, 13));
+  BoundingBox within;
+  within.extend(Vec3(1.5, 1.5, 9.5));
+  within.extend(Vec3(4.5, 4.5, 13.5));
+  const detail::OutsidePart whole = detail::outside_part(column, solid);
+  const detail::OutsidePart near = detail::outside_part(column, solid, &within);
+  ASSERT_TRUE(whole.mesh.has_value());
+  ASSERT_TRUE(near.mesh.has_value());
+  EXPECT_NEAR(near.volume, whole.volume, 1e-12);  // rounded from differently triangulated faces
+  EXPECT_NEAR(near.volume, 12.0, 1e-12);
+  EXPECT_NEAR(flagged_area(*near.mesh, near.on_input, 1), 4.0, 1e-12);   // its bottom, on S's top
+  EXPECT_NEAR(flagged_area(*near.mesh, near.on_input, 0), 28.0, 1e-12);  // its sides and top
+  EXPECT_EQ(bounding_box(*near.mesh).min, bounding_box(*whole.mesh).min);
+  EXPECT_EQ(bounding_box(*near.mesh).max, bounding_box(*whole.mesh).max);
+}
+
 }  // namespace
 }  // namespace subfab
