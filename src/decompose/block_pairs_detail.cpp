@@ -5,7 +5,6 @@
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
 
 #include "geometry/deterministic_arena.h"
-#include "subfab/checks/check_self_intersections.h"
 #include "subfab/validate/validate_decomposition.h"
 #include "validate/validate_booleans.h"
 
@@ -53,7 +52,7 @@ bool overlaps_a_block(const Mesh& m, const std::vector<Block>& blocks, const std
 }
 
 std::unique_ptr<SolidIndex> inside_test_index(const Mesh& block) {
-  if (count_degenerate_faces(block) > 0 || check_self_intersections(block).failed()) return nullptr;
+  if (!boolean_input_defect(block, /*whole_surface=*/true).empty()) return nullptr;
   return std::make_unique<SolidIndex>(block);
 }
 

@@ -273,7 +273,7 @@ MillToleranceResult mill_within_tolerance(const Mesh& solid, std::vector<Block> 
     std::vector<FillPart> view(all_filled.size());
     for (std::size_t k = 0; k < ids.size(); ++k)
       if (parts[k]) view[slot[ids[k]]] = {parts[k]->faces(), &parts[k]->on_input};
-      FillDeviationUpperBounds upper;
+    FillDeviationUpperBounds upper;
     try {
       upper = fill_deviation_upper_bounds(solid, all_filled, view, {.error = error, .stop = options.tolerance});
     } catch (const std::exception&) {

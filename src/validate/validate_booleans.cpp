@@ -32,6 +32,19 @@
 #include "subfab/validate/validate_decomposition.h"
 
 namespace subfab {
+
+std::string detail::boolean_input_defect(const Mesh& m, bool whole_surface) {
+  if (const std::size_t n = count_degenerate_faces(m))
+    return "has " + std::to_string(n) + " degenerate (zero-area) faces; exact booleans cannot be run on it";
+  if (whole_surface) {
+    const CheckResult crossing = check_self_intersections(m);
+    if (crossing.failed())
+      return "intersects itself (" + std::to_string(crossing.num_offending) +
+             " pairs of faces); exact booleans cannot be run on it";
+  }
+  return {};
+}
+
 namespace {
 
 namespace PMP = CGAL::Polygon_mesh_processing;
@@ -88,15 +101,8 @@ double mesh_volume(const ExactMesh& m, Volume mode = Volume::Rounded) {
 //! throwing test looks (validate of anchor.off at --tolerance 5e-4, block
 //! 042). The input was checked when it was read.
 void require_boolean_input(const Mesh& m, const char* what, bool whole_surface = false) {
-  if (const std::size_t n = detail::count_degenerate_faces(m))
-    throw AlgorithmError(std::string(what) + " has " + std::to_string(n) +
-                         " degenerate (zero-area) faces; exact booleans cannot be run on it");
-  if (whole_surface) {
-    const CheckResult crossing = check_self_intersections(m);
-    if (crossing.failed())
-      throw AlgorithmError(std::string(what) + " intersects itself (" + std::to_string(crossing.num_offending) +
-                           " pairs of faces); exact booleans cannot be run on it");
-  }
+  const std::string defect = detail::boolean_input_defect(m, whole_surface);
+  if (!defect.empty()) throw AlgorithmError(std::string(what) + " " + defect);
 }
 
 const auto kThrowOnSelfIntersection = CGAL::parameters::throw_on_self_intersection(true);

@@ -6,11 +6,17 @@
 #pragma once
 
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "subfab/mesh/mesh.h"
 
 namespace subfab::detail {
+
+//! Why the exact booleans refuse the closed mesh `m` ("has N degenerate
+//! (zero-area) faces; ..." or, with `whole_surface`, "intersects itself (N
+//! pairs of faces); ..."), or empty when they accept it (exact checks).
+std::string boolean_input_defect(const Mesh& m, bool whole_surface);
 
 //! blocks_overlap() with the result's volume evaluated exactly (then
 //! rounded once), so independent of how the corefinement triangulated it

@@ -13,7 +13,10 @@
 //!      intersection volume <= collision_tolerance x the smaller, as
 //!      validate's overlap check); the carved blocks do not overlap, so only
 //!      the pairs where a block's fill (the boxes fill_columns() gives) meets
-//!      the other's box are checked;
+//!      the other's box are checked, a pair whose interiors each miss the
+//!      other's fill boxes is proven apart without a boolean (exact
+//!      face/box and inside tests), and the exact check of the others runs
+//!      on both shapes clipped near those boxes;
 //!   3. the model then made, the input with every block that sticks out,
 //!      stays within T of the input near it: FillDeviationMeter (exact
 //!      booleans, bounded-error Hausdorff distances both ways), measured
@@ -23,9 +26,10 @@
 //!      block only when those cannot be computed. Before it, a sampled lower
 //!      bound fails a block for sure (fill_deviation_lower_bound.h) and an
 //!      upper bound over the block's part outside the input keeps it for
-//!      sure (fill_deviation_upper_bound.h: one exact difference, distances
-//!      within the same error; not for a lone filled block, whose difference
-//!      would run on one core); only the blocks neither decides are measured.
+//!      sure (fill_deviation_upper_bound.h: one exact difference, of the
+//!      block clipped near its fill boxes, distances within the same error;
+//!      not for a lone filled block, whose difference would run on one
+//!      core); only the blocks neither decides are measured.
 //! A block that fails any of them is reported; the caller takes the
 //! allowances back there and decomposes again (decompose()).
 #pragma once
