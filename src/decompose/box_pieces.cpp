@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <array>
-#include <map>
 #include <numeric>
 #include <utility>
 
@@ -70,30 +69,38 @@ std::vector<std::vector<int>> surface_pieces(const SolidIndex& index, const std:
     return x;
   };
   const Mesh& mesh = index.mesh();
+  // Position of each face in `faces` (-1: not inside), in a buffer per thread
+  // reset after use: a lookup per edge without a search.
+  thread_local std::vector<int> slot;
+  if (slot.size() < mesh.faces.size()) slot.assign(mesh.faces.size(), -1);
+  for (std::size_t i = 0; i < n; ++i) slot[static_cast<std::size_t>(faces[i])] = static_cast<int>(i);
   for (std::size_t i = 0; i < n; ++i) {
     const int f = faces[i];
     const auto& t = mesh.faces[static_cast<std::size_t>(f)];
     for (int k = 0; k < 3; ++k) {
       const int g = neighbours[static_cast<std::size_t>(3 * f + k)];
       if (g < f) continue;  // each edge once (and -1)
-      auto it = std::lower_bound(faces.begin(), faces.end(), g);
-      if (it == faces.end() || *it != g) continue;
+      const int j = slot[static_cast<std::size_t>(g)];
+      if (j < 0) continue;
       const Vec3& a = mesh.vertices[static_cast<std::size_t>(t[static_cast<std::size_t>(k)])];
       const Vec3& b = mesh.vertices[static_cast<std::size_t>(t[static_cast<std::size_t>((k + 1) % 3)])];
       if (!segment_meets_closed_box(a, b, box.box)) continue;
-      const int ra = find(static_cast<int>(i)), rb = find(static_cast<int>(it - faces.begin()));
+      const int ra = find(static_cast<int>(i)), rb = find(j);
       if (ra != rb) parent[static_cast<std::size_t>(std::max(ra, rb))] = std::min(ra, rb);
     }
   }
+  for (int f : faces) slot[static_cast<std::size_t>(f)] = -1;
   // Roots are the smallest index of their set (union by min): pieces in
   // order of their smallest face id.
-  std::map<int, std::size_t> piece_of_root;
+  std::vector<int> piece_of_root(n, -1);
   std::vector<std::vector<int>> pieces;
   for (std::size_t i = 0; i < n; ++i) {
-    const int r = find(static_cast<int>(i));
-    auto [it, inserted] = piece_of_root.try_emplace(r, pieces.size());
-    if (inserted) pieces.emplace_back();
-    pieces[it->second].push_back(faces[i]);
+    int& piece = piece_of_root[static_cast<std::size_t>(find(static_cast<int>(i)))];
+    if (piece < 0) {
+      piece = static_cast<int>(pieces.size());
+      pieces.emplace_back();
+    }
+    pieces[static_cast<std::size_t>(piece)].push_back(faces[i]);
   }
   return pieces;
 }

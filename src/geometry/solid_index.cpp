@@ -12,6 +12,7 @@
 #include "geometry/exact_normal_signs.h"
 #include "geometry/triangle_meets_open_box.h"
 #include "subfab/core/error.h"
+#include "subfab/core/parallel.h"
 
 namespace subfab::detail {
 namespace {
@@ -184,6 +185,24 @@ namespace {
 bool overlaps_open(const Box3& node, const Box3& box) {
   return (node.max.array() > box.min.array()).all() && (node.min.array() < box.max.array()).all();
 }
+
+//! Sorts distinct face ids below `num_faces` (a query's result, in the BVH's
+//! order). A large result is sorted through a bitmap of all faces, linear in
+//! num_faces / 64 + its size, instead of a comparison sort (grow's coverage
+//! and piece counts query boxes holding most of the mesh).
+void sort_face_ids(std::vector<int>& ids, std::size_t num_faces) {
+  if (ids.size() < 64 || ids.size() * 16 < num_faces / 64) {
+    std::sort(ids.begin(), ids.end());
+    return;
+  }
+  std::vector<std::uint64_t> bits((num_faces + 63) / 64, 0);
+  for (int f : ids) bits[static_cast<std::size_t>(f) >> 6] |= std::uint64_t{1} << (static_cast<unsigned>(f) & 63u);
+  std::size_t out = 0;
+  for (std::size_t w = 0; w < bits.size(); ++w)
+    for (std::uint64_t word = bits[w]; word != 0; word &= word - 1)
+      ids[out++] = static_cast<int>(64 * w + static_cast<std::size_t>(std::countr_zero(word)));
+  ids.resize(out);  // the ids are distinct: out == ids.size()
+}
 }  // namespace
 
 double box_base(const Box3& box, Axis axis) {
@@ -248,7 +267,16 @@ SolidIndex::SolidIndex(const Mesh& mesh, double overhang_sine, const std::vector
   }
   m.facing = overhang_sine > 0.0 || allowed ? facing_signs(mesh, overhang_sine, allowed ? &everywhere : nullptr)
                                             : m.normal_signs;
-  for (Axis axis : kAllAxes) {
+  // The six axes' lists and trees and the tree of all faces are independent:
+  // built in parallel (the same trees whatever the thread count).
+  parallel_for(0, kAllAxes.size() + 1, [&](std::size_t task) {
+    if (task == kAllAxes.size()) {
+      std::vector<int> all(nf);
+      std::iota(all.begin(), all.end(), 0);
+      m.all_bvh.build(std::move(all), m.boxes);
+      return;
+    }
+    const Axis axis = kAllAxes[task];
     const auto ai = static_cast<std::size_t>(axis_index(axis));
     const auto k = static_cast<std::size_t>(axis_dimension(axis));
     auto& fl = m.floor[ai];
@@ -265,10 +293,7 @@ SolidIndex::SolidIndex(const Mesh& mesh, double overhang_sine, const std::vector
     m.any_soft[ai] = !soft.empty();
     m.hard_bvh[ai].build(std::move(hard), m.boxes);
     m.soft_bvh[ai].build(std::move(soft), m.boxes, &fl);
-  }
-  std::vector<int> all(nf);
-  std::iota(all.begin(), all.end(), 0);
-  m.all_bvh.build(std::move(all), m.boxes);
+  });
 }
 
 SolidIndex::~SolidIndex() = default;
@@ -314,7 +339,7 @@ std::vector<int> SolidIndex::blocking_faces(const Box3& box, Axis axis, std::siz
     result.push_back(f);
     return true;
   });
-  std::sort(result.begin(), result.end());
+  sort_face_ids(result, impl_->mesh.faces.size());
   if (result.size() > max_count) result.resize(max_count);
   return result;
 }
@@ -330,7 +355,7 @@ std::vector<int> SolidIndex::faces_meeting_open_box(const Box3& box) const {
                       result.push_back(f);
                     return true;
                   });
-  std::sort(result.begin(), result.end());
+  sort_face_ids(result, m.mesh.faces.size());
   return result;
 }
 
@@ -352,7 +377,7 @@ std::vector<int> SolidIndex::faces_near_closed_box(const Box3& box) const {
     if (touches(m.boxes[static_cast<std::size_t>(f)])) result.push_back(f);
     return true;
   });
-  std::sort(result.begin(), result.end());
+  sort_face_ids(result, m.mesh.faces.size());
   return result;
 }
 
@@ -389,7 +414,7 @@ std::vector<int> SolidIndex::faces_covered(const Box3& box, Axis axis) const {
         if (face_covered(f, box, axis)) result.push_back(f);
         return true;
       });
-  std::sort(result.begin(), result.end());
+  sort_face_ids(result, m.mesh.faces.size());
   return result;
 }
 

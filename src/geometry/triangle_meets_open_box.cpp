@@ -15,12 +15,16 @@ bool triangle_meets_open_box(const Vec3& a, const Vec3& b, const Vec3& c, const 
   const Vec3& hi = box.max;
   for (int k = 0; k < 3; ++k)
     if (!(hi[k] > lo[k])) return false;  // empty interior
-  // 1. Box face normals: the triangle's bounding box.
+  // 1. Box face normals: the triangle's bounding box. When it lies in the
+  //    open box, so does the triangle (convex): it meets it.
+  bool inside = true;
   for (int k = 0; k < 3; ++k) {
     const double tmin = std::min({a[k], b[k], c[k]});
     const double tmax = std::max({a[k], b[k], c[k]});
     if (tmax <= lo[k] || tmin >= hi[k]) return false;
+    inside = inside && tmin > lo[k] && tmax < hi[k];
   }
+  if (inside) return true;
   // 2. Triangle normal n: separated iff the whole box is weakly on one side
   //    of the triangle's plane (skipped when n = 0).
   {
