@@ -443,12 +443,16 @@ double SolidIndex::push_face(const Box3& box, Axis axis, int dim, int side, doub
   const bool moves_base = dim == axis_dimension(axis) && side == -axis_sign(axis);
   const double base_now = box_base(box, axis);
   const double base_lowest = box_base(region, axis);
+  // Candidates are ordered by where their bounding box begins along the
+  // motion (no face blocks before it), and a face's approximate contact is
+  // computed only when that lies before the best position so far: the
+  // contact found is the same in any order (each face's first blocking
+  // position is found exactly), and most faces of a long sweep lie beyond it.
   struct Candidate {
-    double estimate;  // approximate first blocking position
+    double reach;  // where the face's bounding box begins along the motion (>= current)
     int face;
   };
   std::vector<Candidate> candidates;
-  std::vector<Vec3> poly, scratch;
   const auto collect = [&](int f) {
     const Box3& fb = m.boxes[static_cast<std::size_t>(f)];
     if (!overlaps_open(fb, region)) return true;
@@ -456,7 +460,24 @@ double SolidIndex::push_face(const Box3& box, Axis axis, int dim, int side, doub
     if (!(fl > base_lowest)) return true;  // allowed all the way
     const bool soft = moves_base && !(fl > base_now);  // blocks only once the base passes its floor
     if (!soft && (side > 0 ? fb.max[dim] < current : fb.min[dim] > current)) return true;
-    // Approximate contact: clip the triangle to the closed swept region.
+    candidates.push_back({side > 0 ? std::max(current, fb.min[dim]) : std::min(current, fb.max[dim]), f});
+    return true;
+  };
+  m.hard_bvh[ai].query([&](const auto& node) { return overlaps_open(node.bounds, region); }, collect);
+  if (m.any_soft[ai])
+    m.soft_bvh[ai].query([&](const auto& node) { return node.key > base_lowest && overlaps_open(node.bounds, region); },
+                         collect);
+  std::sort(candidates.begin(), candidates.end(), [&](const Candidate& x, const Candidate& y) {
+    if (x.reach != y.reach) return side > 0 ? x.reach < y.reach : x.reach > y.reach;
+    return x.face < y.face;
+  });
+  // Approximate first blocking position of face f: clip the triangle to the
+  // closed swept region.
+  std::vector<Vec3> poly, scratch;
+  const auto estimate_of = [&](int f) {
+    const Box3& fb = m.boxes[static_cast<std::size_t>(f)];
+    const double fl = m.floor[ai][static_cast<std::size_t>(f)];
+    const bool soft = moves_base && !(fl > base_now);
     poly = {m.vertex(f, 0), m.vertex(f, 1), m.vertex(f, 2)};
     for (int k = 0; k < 3 && !poly.empty(); ++k) {
       if (k == dim) continue;
@@ -473,38 +494,29 @@ double SolidIndex::push_face(const Box3& box, Axis axis, int dim, int side, doub
       estimate = side > 0 ? std::min(estimate, limit) : std::max(estimate, limit);
     }
     if (side > 0 ? !(estimate >= current) : !(estimate <= current)) estimate = current;
-    candidates.push_back({estimate, f});
-    return true;
+    return estimate;
   };
-  m.hard_bvh[ai].query([&](const auto& node) { return overlaps_open(node.bounds, region); }, collect);
-  if (m.any_soft[ai])
-    m.soft_bvh[ai].query([&](const auto& node) { return node.key > base_lowest && overlaps_open(node.bounds, region); },
-                         collect);
-  std::sort(candidates.begin(), candidates.end(), [&](const Candidate& x, const Candidate& y) {
-    if (x.estimate != y.estimate) return side > 0 ? x.estimate < y.estimate : x.estimate > y.estimate;
-    return x.face < y.face;
-  });
 
   // Keys increase in the direction of motion.
   auto key = [&](double t) { return side * ordered_key(t); };
   auto value = [&](std::int64_t k) { return from_ordered_key(side * k); };
   double best = limit;
   for (const Candidate& cand : candidates) {
-    const Box3& fb = m.boxes[static_cast<std::size_t>(cand.face)];
+    // The face can only meet the open box at `best` if it reaches below it;
+    // the faces after it begin no earlier.
+    if (side > 0 ? !(cand.reach < best) : !(cand.reach > best)) break;
     const double fl = m.floor[ai][static_cast<std::size_t>(cand.face)];
     const auto blocks = [&](double t) {
       const Box3 b = box_at(t);
       return fl > box_base(b, axis) && m.meets(cand.face, b);
     };
-    // The face can only meet the open box at `best` if it reaches below it.
-    if (side > 0 ? !(fb.min[dim] < best) : !(fb.max[dim] > best)) continue;
     if (!blocks(best)) continue;
     // Largest t in [current, best) with no contact: lo never meets (the box
     // at `current` is valid), hi meets; gallop from the estimate, then bisect.
     std::int64_t lo = key(current);
     std::int64_t hi = key(best);
     auto meets_key = [&](std::int64_t k) { return blocks(value(k)); };
-    std::int64_t guess = std::clamp(key(cand.estimate), lo, hi);
+    std::int64_t guess = std::clamp(key(estimate_of(cand.face)), lo, hi);
     if (guess > lo && guess < hi) {
       if (meets_key(guess)) {
         hi = guess;
