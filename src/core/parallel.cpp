@@ -20,18 +20,25 @@ void parallel_for(std::size_t begin, std::size_t end, const std::function<void(s
   std::exception_ptr first_error;
   std::size_t first_index = end;
   std::mutex mutex;
-  tbb::parallel_for(begin, end, [&](std::size_t i) {
-    try {
-      fn(i);
-    } catch (...) {
-      std::lock_guard<std::mutex> lock(mutex);
-      // Keep the error of the smallest index, so the reported error does not
-      // depend on scheduling.
-      if (i < first_index) {
-        first_index = i;
-        first_error = std::current_exception();
+  // Isolated: a thread waiting for this loop to finish runs only this
+  // loop's tasks, never an outer loop's. Without it a loop nested under a
+  // once-flag or a lock (a block's index built on first use by whichever
+  // task asks first: lazy_solid.h) could have its thread take an outer
+  // task that waits for that same flag: a deadlock.
+  tbb::this_task_arena::isolate([&] {
+    tbb::parallel_for(begin, end, [&](std::size_t i) {
+      try {
+        fn(i);
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(mutex);
+        // Keep the error of the smallest index, so the reported error does
+        // not depend on scheduling.
+        if (i < first_index) {
+          first_index = i;
+          first_error = std::current_exception();
+        }
       }
-    }
+    });
   });
   if (first_error) std::rethrow_exception(first_error);
 }

@@ -35,20 +35,52 @@ bool within_limits(const BoundingBox& box, Axis axis, double max_height, const V
 
 bool overlaps_a_block(const Mesh& m, const std::vector<Block>& blocks, const std::vector<BoundingBox>& boxes,
                       const std::vector<double>& volumes, const std::function<bool(std::size_t)>& skip,
-                      double tolerance) {
+                      double tolerance, const AddedFill* added) {
   const BoundingBox box = bounding_box(m);
   const double volume = signed_volume(m);
   for (std::size_t k = 0; k < blocks.size(); ++k) {
     if ((skip && skip(k)) || !interiors_meet(box, boxes[k])) continue;
     const double allowed = tolerance * std::min(volume, volumes[k]);
+    BoundingBox region;
+    if (added) {
+      extend_by_fill_boxes(*added->tiles, boxes[k], region);
+      if (region.is_empty()) continue;  // the fill does not reach block k
+    }
     if (overlap_volume_bound(m, blocks[k].mesh, Eigen::Matrix3d::Identity()) <= allowed) continue;
+    if (added) {
+      const SolidIndex* index = added->index_of(k);
+      if (index && (fill_misses_solid(*added->tiles, *index, boxes[k]) ||
+                    fill_misses_solid(*added->columns, *index, boxes[k])))
+        continue;
+    }
     try {
-      if (exact_blocks_overlap(m, blocks[k].mesh) > allowed) return true;
+      const double overlap = added ? exact_blocks_overlap(m, blocks[k].mesh, region) : exact_blocks_overlap(m, blocks[k].mesh);
+      if (overlap > allowed) return true;
     } catch (const std::exception&) {
       return true;
     }
   }
   return false;
+}
+
+void extend_by_fill_boxes(const std::vector<BoundingBox>& fill, const BoundingBox& other, BoundingBox& region) {
+  for (const BoundingBox& b : fill)
+    if (interiors_meet(b, other)) {
+      region.extend(b.min.cwiseMax(other.min));
+      region.extend(b.max.cwiseMin(other.max));
+    }
+}
+
+BoundingBox fill_hull(const std::vector<BoundingBox>& fill, const BoundingBox& block) {
+  BoundingBox w;
+  for (const BoundingBox& b : fill) {
+    w.extend(b.min);
+    w.extend(b.max);
+  }
+  const double margin = 1e-3 * std::max(w.diagonal(), block.diagonal());
+  w.min.array() -= margin;
+  w.max.array() += margin;
+  return w;
 }
 
 std::unique_ptr<SolidIndex> inside_test_index(const Mesh& block) {

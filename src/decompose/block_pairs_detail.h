@@ -29,14 +29,39 @@ std::vector<double> block_volumes(const std::vector<Block>& blocks);
 //! extents within machine_size.x() and .y() (either way round)? Model units.
 bool within_limits(const BoundingBox& box, Axis axis, double max_height, const Vec3& machine_size);
 
+//! What a milled shape M adds to a solid C that overlaps no block: the
+//! fill G = closure(M \ C), covered by `tiles` (fill_columns()) and, finer,
+//! by `columns` (fill_face_columns()). M can then overlap a block only in
+//! G. `index_of(k)` gives block k's inside_test_index() (built on first
+//! use; nullptr when the exact booleans refuse the block).
+struct AddedFill {
+  const std::vector<BoundingBox>* tiles = nullptr;
+  const std::vector<BoundingBox>* columns = nullptr;
+  std::function<const SolidIndex*(std::size_t)> index_of;
+};
+
 //! Does the block mesh `m` overlap one of `blocks` (those `skip` does not
 //! exclude; `boxes` and `volumes` theirs) by more than `tolerance` x the
 //! smaller volume? A bound from the boxes first (overlap_volume_bound()),
 //! then the exact volume (validate's overlap check); an exact boolean that
-//! fails counts as an overlap.
+//! fails counts as an overlap. With `added` (m = C + G, C overlapping no
+//! block), a block none of whose interior meets a box of G
+//! (fill_misses_solid(), exact) is not checked further, and the exact
+//! volume is computed with both clipped near the boxes that meet it.
 bool overlaps_a_block(const Mesh& m, const std::vector<Block>& blocks, const std::vector<BoundingBox>& boxes,
                       const std::vector<double>& volumes, const std::function<bool(std::size_t)>& skip,
-                      double tolerance);
+                      double tolerance, const AddedFill* added = nullptr);
+
+//! Extends `region` by each box of `fill` whose interior meets `other`,
+//! clipped to `other`: where a shape that adds `fill` can overlap a solid
+//! in the box `other`.
+void extend_by_fill_boxes(const std::vector<BoundingBox>& fill, const BoundingBox& other, BoundingBox& region);
+
+//! The box around all of `fill`, widened by 1e-3 of the larger of its and
+//! `block`'s diagonals (so that no plane of it is a face's plane by
+//! accident): what a block's part outside the input is clipped to when that
+//! part lies in its fill (detail::outside_part()).
+BoundingBox fill_hull(const std::vector<BoundingBox>& fill, const BoundingBox& block);
 
 //! The SolidIndex of a block the exact booleans accept (no zero-area face,
 //! no self-intersection, exact checks: its inside test is then

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <tuple>
@@ -112,12 +114,30 @@ std::string rejection_summary(const std::vector<unsigned>& why) {
   return out;
 }
 
+//! Each block's detail::inside_test_index(), built on first use (once,
+//! from whichever evaluation asks first).
+class LazyIndexes {
+ public:
+  explicit LazyIndexes(const std::vector<Block>& blocks)
+      : blocks_(blocks), once_(std::make_unique<std::once_flag[]>(blocks.size())), index_(blocks.size()) {}
+  const detail::SolidIndex* operator()(std::size_t k) const {
+    std::call_once(once_[k], [&] { index_[k] = detail::inside_test_index(blocks_[k].mesh); });
+    return index_[k].get();
+  }
+
+ private:
+  const std::vector<Block>& blocks_;
+  std::unique_ptr<std::once_flag[]> once_;
+  mutable std::vector<std::unique_ptr<detail::SolidIndex>> index_;
+};
+
 //! The state the evaluation of a pair reads.
 struct State {
   const std::vector<Block>& blocks;
   const std::vector<char>& filled;
   const std::vector<BoundingBox>& boxes;
   const std::vector<double>& volumes;
+  const LazyIndexes& indexes;
 };
 
 std::optional<Candidate> evaluate(std::size_t i, std::size_t j, const State& s, const FillDeviationMeter& meter,
@@ -186,6 +206,14 @@ std::optional<Candidate> evaluate(std::size_t i, std::size_t j, const State& s, 
       why |= kMilled;
       continue;
     }
+    // What m adds to the union (which overlaps no block): its fill, in
+    // these boxes (measure_fill_deviation.h; nullopt: not bounded). Where
+    // neither block sticks out, the union lies in the solid and m's part
+    // outside it lies in the fill too.
+    const std::optional<std::vector<BoundingBox>> columns = fill_face_columns(*u, m, axis);
+    std::optional<std::vector<BoundingBox>> tiles;
+    if (columns) tiles = columns->empty() ? *columns : tile_columns(*columns, m, axis);
+    const bool inside = !s.filled[i] && !s.filled[j];
     // The deviation first (it rejects most), then collisions (exact booleans).
     // Where neither block sticks out, the union lies in the solid and only
     // its fill can deviate (measure_fill(), local); else near the whole union.
@@ -195,7 +223,9 @@ std::optional<Candidate> evaluate(std::size_t i, std::size_t j, const State& s, 
     // union within the tolerance.
     double bound = std::numeric_limits<double>::infinity();
     try {
-      const detail::OutsidePart part = detail::outside_part(m, meter.solid());
+      std::optional<BoundingBox> within;
+      if (inside && tiles && !tiles->empty()) within = detail::fill_hull(*tiles, bounding_box(m));
+      const detail::OutsidePart part = detail::outside_part(m, meter.solid(), within ? &*within : nullptr);
       if (part.faces()) {
         std::vector<const Mesh*> all{&m};
         all.insert(all.end(), others.begin(), others.end());
@@ -212,17 +242,18 @@ std::optional<Candidate> evaluate(std::size_t i, std::size_t j, const State& s, 
     }
     if (!(bound + moved <= o.tolerance)) {
       const FillDeviationOptions fo{.reach = o.tolerance, .error = error, .max_faces = o.max_region_faces};
-      std::optional<std::vector<BoundingBox>> fill;
-      if (!s.filled[i] && !s.filled[j]) fill = fill_columns(*u, m, axis);
-      const FillDeviation dev = fill ? meter.measure_fill(m, others, *fill, fo) : meter.measure(m, others, fo);
+      const FillDeviation dev =
+          inside && tiles ? meter.measure_fill(m, others, *tiles, fo) : meter.measure(m, others, fo);
       if (!dev.failure.empty() || dev.bound() + moved > o.tolerance) {
         why |= kDeviation;
         continue;
       }
       bound = dev.bound();
     }
+    const detail::AddedFill added{tiles ? &*tiles : nullptr, columns ? &*columns : nullptr,
+                                  [&](std::size_t k) { return s.indexes(k); }};
     if (detail::overlaps_a_block(m, s.blocks, s.boxes, s.volumes, [&](std::size_t k) { return k == i || k == j; },
-                                 o.collision_tolerance)) {
+                                 o.collision_tolerance, tiles ? &added : nullptr)) {
       why |= kCollision;
       continue;
     }
@@ -272,7 +303,8 @@ ToleranceMergeResult merge_within_tolerance(const Mesh& solid, std::vector<Block
         }
     if (order.empty()) break;
     std::sort(order.begin(), order.end());
-    const State state{blocks, filled, boxes, volumes};
+    const LazyIndexes indexes(blocks);
+    const State state{blocks, filled, boxes, volumes, indexes};
     std::vector<std::optional<Candidate>> found(order.size());
     std::vector<std::size_t> tried(order.size(), 0);
     std::vector<unsigned> why(order.size(), 0);

@@ -103,11 +103,7 @@ MillToleranceResult mill_within_tolerance(const Mesh& solid, std::vector<Block> 
       region.extend(boxes[k].max.cwiseMin(other.max));
       return;
     }
-    for (const BoundingBox& b : *fill[k])
-      if (detail::interiors_meet(b, other)) {
-        region.extend(b.min.cwiseMax(other.min));
-        region.extend(b.max.cwiseMin(other.max));
-      }
+    detail::extend_by_fill_boxes(*fill[k], other, region);
   };
   std::vector<std::pair<std::size_t, std::size_t>> pairs;
   std::vector<BoundingBox> regions;
@@ -254,16 +250,7 @@ MillToleranceResult mill_within_tolerance(const Mesh& solid, std::vector<Block> 
     // that no plane of it is a face's).
     parallel_for(0, ids.size(), [&](std::size_t k) {
       std::optional<BoundingBox> within;
-      if (fill[ids[k]] && !fill[ids[k]]->empty()) {
-        BoundingBox& w = within.emplace();
-        for (const BoundingBox& b : *fill[ids[k]]) {
-          w.extend(b.min);
-          w.extend(b.max);
-        }
-        const double margin = 1e-3 * std::max(w.diagonal(), boxes[ids[k]].diagonal());
-        w.min.array() -= margin;
-        w.max.array() += margin;
-      }
+      if (fill[ids[k]] && !fill[ids[k]]->empty()) within = detail::fill_hull(*fill[ids[k]], boxes[ids[k]]);
       try {
         parts[k] = detail::outside_part(blocks[ids[k]].mesh, solid, within ? &*within : nullptr);
       } catch (const std::exception&) {

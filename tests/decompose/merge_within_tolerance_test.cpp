@@ -3,6 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include "decompose/block_pairs_detail.h"
+#include "geometry/solid_index.h"
+
 #include "subfab/core/error.h"
 #include "subfab/validate/measure_fill_deviation.h"
 #include "subfab/validate/validate_decomposition.h"
@@ -88,6 +91,47 @@ TEST(MergeWithinTolerance, AMergeWhoseFillWouldCollideWithAnotherBlockIsNotTaken
   const ToleranceMergeResult free = merge_within_tolerance(voxel_mesh(grooved_box_cells()), halves(grooved_box_cells()), o);
   ASSERT_EQ(free.blocks.size(), 1u);
   EXPECT_TRUE(free.blocks[0].axis == Axis::PosZ || free.blocks[0].axis == Axis::NegZ);
+}
+
+TEST(MergeWithinTolerance, AFillProvenToMissABlockNeedsNoBooleanAndOneReachingItCollides) {
+  // The merges' collision check with what the milled shape adds (its fill,
+  // in boxes): against the L prism (the union of [0,2]x[0,1] and [0,1]x[0,2]
+  // in xy, z in [0,1]; its notch [1,2]^2 is empty). Here each shape is all
+  // fill (its carved part empty), covered by its own box.
+  const std::vector<Block> blocks{Block{test::l_solid(), Axis::PosZ, 0}};
+  const std::vector<BoundingBox> boxes = detail::block_boxes(blocks);
+  const std::vector<double> volumes = detail::block_volumes(blocks);
+  const std::unique_ptr<detail::SolidIndex> index = detail::inside_test_index(blocks[0].mesh);
+  ASSERT_NE(index, nullptr);
+  int asked = 0;
+  const auto check = [&](const Mesh& m, const std::vector<BoundingBox>& fill, bool proof) {
+    const detail::AddedFill added{&fill, &fill, [&](std::size_t k) {
+                                    EXPECT_EQ(k, 0u);
+                                    ++asked;
+                                    return index.get();
+                                  }};
+    return detail::overlaps_a_block(m, blocks, boxes, volumes, nullptr, 1e-6, proof ? &added : nullptr);
+  };
+  // In the notch: its box meets the prism's, its interior misses the prism:
+  // proven apart (the index asked once), as the exact check finds.
+  const Mesh in_notch = test::box_solid({1.2, 1.2, 0}, {1.8, 1.8, 1});
+  EXPECT_FALSE(check(in_notch, {bounding_box(in_notch)}, true));
+  EXPECT_EQ(asked, 1);
+  EXPECT_FALSE(check(in_notch, {bounding_box(in_notch)}, false));
+  // Across the arm x in [0.8, 1]: 0.12 of it inside the prism, a collision
+  // both ways.
+  const Mesh across = test::box_solid({0.8, 1.2, 0}, {1.8, 1.8, 1});
+  EXPECT_TRUE(check(across, {bounding_box(across)}, true));
+  EXPECT_EQ(asked, 2);
+  EXPECT_TRUE(check(across, {bounding_box(across)}, false));
+  // A tall shape standing in the notch whose fill lies above z = 1 (its
+  // carved part is the notch's height): the fill does not reach into the
+  // prism's box, so the pair is not checked at all (the index not asked).
+  const Mesh tall = test::box_solid({1.2, 1.2, 0}, {1.8, 1.8, 3});
+  EXPECT_FALSE(check(tall, {BoundingBox{Vec3(1.2, 1.2, 1), Vec3(1.8, 1.8, 3)}}, true));
+  EXPECT_EQ(asked, 2);
+  EXPECT_FALSE(check(tall, {bounding_box(tall)}, true));  // all fill: proven apart
+  EXPECT_EQ(asked, 3);
 }
 
 TEST(MergeWithinTolerance, RejectsANonPositiveTolerance) {

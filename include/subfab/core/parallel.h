@@ -14,7 +14,8 @@ namespace subfab {
 //! Calls fn(i) for every i in [begin, end), in parallel when the range is
 //! larger than serial_threshold. fn must be safe to call concurrently for
 //! different i. Exceptions thrown by fn are rethrown (the first one) after
-//! the loop.
+//! the loop. Nested calls are safe under a lock or a once-flag: the thread
+//! that waits for a loop runs only that loop's tasks (TBB task isolation).
 void parallel_for(std::size_t begin, std::size_t end, const std::function<void(std::size_t)>& fn,
                   std::size_t serial_threshold = 1);
 
