@@ -3,6 +3,7 @@
 #include "subfab/decompose/select_cover.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -77,6 +78,20 @@ struct Instance {
   //! the lower index is kept). Returns true on change.
   bool drop_implied_rows() {
     std::vector<char> drop(row_boxes.size(), 0);
+    // Each row's boxes as a bitset: a subset test in a few word operations
+    // (egea's 7715 rows after a tolerance: 0.8 s with sorted lists).
+    const std::size_t words = (box_rows.size() + 63) / 64;
+    std::vector<std::uint64_t> bits(row_boxes.size() * words, 0);
+    for (std::size_t r = 0; r < row_boxes.size(); ++r)
+      for (int b : row_boxes[r])
+        bits[r * words + (static_cast<std::size_t>(b) >> 6)] |= std::uint64_t{1} << (static_cast<unsigned>(b) & 63u);
+    const auto row_in = [&](std::size_t small, std::size_t big) {
+      const std::uint64_t* a = &bits[small * words];
+      const std::uint64_t* b = &bits[big * words];
+      for (std::size_t w = 0; w < words; ++w)
+        if (a[w] & ~b[w]) return false;
+      return true;
+    };
     for (std::size_t s = 0; s < row_boxes.size(); ++s) {
       if (!row_active[s]) continue;
       const IdList& small = row_boxes[s];
@@ -88,7 +103,7 @@ struct Instance {
         const auto r = static_cast<std::size_t>(r_int);
         if (r == s || drop[r] || drop[s]) continue;
         const IdList& big = row_boxes[r];
-        if (!is_subset(small, big)) continue;
+        if (small.size() > big.size() || !row_in(s, r)) continue;
         if (small.size() == big.size() && r < s) continue;  // equal: keep the lower index r
         drop[r] = 1;
       }
@@ -168,12 +183,21 @@ struct IlpSolution {
 //! Solves min sum c_j x_j s.t. every row has a chosen column, x binary.
 IlpSolution solve_ilp(const std::vector<IdList>& rows, std::size_t num_cols, const std::vector<double>& costs,
                       bool integral_costs, const CoverOptions& options) {
-  CoinPackedMatrix matrix(false, 0, 0);  // row-ordered
-  matrix.setDimensions(0, static_cast<int>(num_cols));
+  // Row-ordered, built at once (appending row by row copies the whole
+  // matrix as it grows: most of the cover's time on egea's 7715 rows).
+  std::vector<CoinBigIndex> starts;
+  std::vector<int> lengths, indices;
+  starts.reserve(rows.size());
+  lengths.reserve(rows.size());
   for (const IdList& row : rows) {
-    const std::vector<double> ones(row.size(), 1.0);
-    matrix.appendRow(static_cast<int>(row.size()), row.data(), ones.data());
+    starts.push_back(static_cast<CoinBigIndex>(indices.size()));
+    lengths.push_back(static_cast<int>(row.size()));
+    indices.insert(indices.end(), row.begin(), row.end());
   }
+  const std::vector<double> ones(indices.size(), 1.0);
+  const CoinPackedMatrix matrix(false, static_cast<int>(num_cols), static_cast<int>(rows.size()),
+                                static_cast<CoinBigIndex>(indices.size()), ones.data(), indices.data(), starts.data(),
+                                lengths.data());
   const std::vector<double> col_lb(num_cols, 0.0), col_ub(num_cols, 1.0);
   const std::vector<double> row_lb(rows.size(), 1.0), row_ub(rows.size(), COIN_DBL_MAX);
 
