@@ -5,12 +5,14 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
 
 #include "decompose/block_pairs_detail.h"
 #include "geometry/exact_mesh.h"
+#include "geometry/triangle_tree.h"
 #include "subfab/core/parallel.h"
 #include "subfab/decompose/finalize_blocks.h"
 #include "subfab/validate/validate_decomposition.h"
@@ -49,10 +51,15 @@ bool exact_height_field(const ExactMesh& m, Axis axis, double sine) {
 
 //! Cheap necessary condition for the union of `self` and `other` to be a
 //! height field along `axis`: every face of `self` that clearly faces away
-//! from the axis lies on the union's base level or inside `other`'s bounding
-//! box (where it may be glued to `other` and vanish from the union). Only
-//! rejects, the exact test decides.
-bool may_be_height_field(const Mesh& self, const BoundingBox& other, Axis axis, double base, double tol) {
+//! from the axis lies on the union's base level or is glued to `other` (and
+//! vanishes from the union): inside `other`'s bounding box, and its centroid
+//! on `other`'s surface (`other_tree`, built on first use; a face partly
+//! glued keeps its other part on the union's surface). Faces too small to
+//! decide (an edge, or the height under the longest edge, within `small`:
+//! cleaned_union() may clean such specks away) are only held to the box.
+//! Only rejects, the exact test decides.
+bool may_be_height_field(const Mesh& self, const Mesh& other, const BoundingBox& other_box, Axis axis, double base,
+                         double tol, double small, std::unique_ptr<detail::TriangleTree>& other_tree) {
   const Vec3 d = axis_direction(axis);
   for (const Triangle& t : self.faces) {
     const Vec3& a = self.vertices[static_cast<std::size_t>(t[0])];
@@ -63,8 +70,15 @@ bool may_be_height_field(const Mesh& self, const BoundingBox& other, Axis axis, 
     if (std::max({a.dot(d), b.dot(d), c.dot(d)}) <= base + tol) continue;
     bool inside = true;
     for (const Vec3* p : {&a, &b, &c})
-      inside = inside && (p->array() >= other.min.array() - tol).all() && (p->array() <= other.max.array() + tol).all();
+      inside = inside && (p->array() >= other_box.min.array() - tol).all() &&
+               (p->array() <= other_box.max.array() + tol).all();
     if (!inside) return false;
+    const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+    const double shortest = std::min({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+    if (shortest <= small || n.norm() <= small * longest) continue;  // a speck (height <= small)
+    if (!other_tree) other_tree = std::make_unique<detail::TriangleTree>(other);
+    const Vec3 centroid = (a + b + c) / 3.0;
+    if (!(other_tree->tree().squared_distance(detail::TriangleTree::point(centroid)) <= small * small)) return false;
   }
   return true;
 }
@@ -80,13 +94,18 @@ std::vector<Axis> union_axes(const Block& a, const Block& b, const BoundingBox& 
     for (Axis x : kAllAxes)
       if (std::find(axes.begin(), axes.end(), x) == axes.end()) axes.push_back(x);
   const double tol = 1e-12 * std::max({1.0, ba.diagonal(), bb.diagonal()});
+  // Far above export's cleanup tolerance (1e-10 x scale) and any rounding
+  // of a glued face's centroid.
+  const double small = 1e-8 * std::max({1.0, ba.diagonal(), bb.diagonal()});
+  std::unique_ptr<detail::TriangleTree> tree_a, tree_b;
   std::vector<Axis> out;
   for (Axis axis : axes) {
     const Vec3 d = axis_direction(axis);
     double base = std::numeric_limits<double>::infinity();
     for (const Mesh* m : {&a.mesh, &b.mesh})
       for (const Vec3& v : m->vertices) base = std::min(base, v.dot(d));
-    if (may_be_height_field(a.mesh, bb, axis, base, tol) && may_be_height_field(b.mesh, ba, axis, base, tol))
+    if (may_be_height_field(a.mesh, b.mesh, bb, axis, base, tol, small, tree_b) &&
+        may_be_height_field(b.mesh, a.mesh, ba, axis, base, tol, small, tree_a))
       out.push_back(axis);
   }
   return out;

@@ -93,6 +93,36 @@ TEST(MergeBlocks, StackedBlockMergesOnlyWhereTheUnionIsAHeightField) {
   EXPECT_EQ(merge_blocks({make_block(slab, Axis::PosZ, 0), make_block(cube, Axis::PosZ, 1)}, limited).blocks.size(), 2u);
 }
 
+TEST(MergeBlocks, AFaceFacingAwayThatIsNotGluedIsScreenedOutBeforeTheExactUnion) {
+  // The L prism along +z (the union of [0,2]x[0,1] and [0,1]x[0,2] in xy,
+  // z in [0,1]) and a box in its notch [1,2]^2, touching its two inner
+  // sides. Floating (z in [0.5, 1]), the box's bottom faces -z above the
+  // base and lies in the prism's bounding box but on none of its faces: the
+  // union overhangs there, and no exact union is tried.
+  MergeOptions o;
+  o.any_direction = false;
+  const MergeResult floating = merge_blocks({make_block(test::l_solid(), Axis::PosZ, 0),
+                                             make_block(box_solid({1, 1, 0.5}, {2, 2, 1}), Axis::PosZ, 1)},
+                                            o);
+  EXPECT_EQ(floating.blocks.size(), 2u);
+  EXPECT_EQ(floating.num_candidates, 0u);
+  // Standing on the arm (z in [1, 2] over [0,1]^2): its bottom is glued to
+  // the prism's top, so the exact union is tried, and taken.
+  const MergeResult standing = merge_blocks({make_block(test::l_solid(), Axis::PosZ, 0),
+                                             make_block(box_solid({0, 0, 1}, {1, 1, 2}), Axis::PosZ, 1)},
+                                            o);
+  ASSERT_EQ(standing.blocks.size(), 1u);
+  EXPECT_EQ(standing.num_candidates, 1u);
+  EXPECT_NEAR(signed_volume(standing.blocks[0].mesh), 4.0, 1e-12);
+  EXPECT_TRUE(is_height_field(standing.blocks[0].mesh, Vec3::UnitZ()));
+  // Filling the notch to the base: a 2 x 2 x 1 box.
+  const MergeResult filling = merge_blocks({make_block(test::l_solid(), Axis::PosZ, 0),
+                                            make_block(box_solid({1, 1, 0}, {2, 2, 1}), Axis::PosZ, 1)},
+                                           o);
+  ASSERT_EQ(filling.blocks.size(), 1u);
+  EXPECT_NEAR(signed_volume(filling.blocks[0].mesh), 4.0, 1e-12);
+}
+
 TEST(MergeBlocks, BlocksThatOnlyTouchAlongAnEdgeStayApart) {
   const MergeResult r = merge_blocks({make_block(box_solid({0, 0, 0}, {1, 1, 1}), Axis::PosZ, 0),
                                       make_block(box_solid({1, 1, 0}, {2, 2, 1}), Axis::PosZ, 1)});
