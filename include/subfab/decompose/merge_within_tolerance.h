@@ -15,7 +15,10 @@
 //!     measured value plus its error bound must be <= T, so the tolerance is
 //!     honoured, never on average), and
 //!   - it overlaps no other block (exact intersection volume <= 1e-6 x the
-//!     smaller, as validate's overlap check).
+//!     smaller, as validate's overlap check). A ∪ B overlaps none, so only
+//!     the fill the milled shape adds can: a block the fill's boxes do not
+//!     reach, or whose interior misses them all (exact), is not checked
+//!     further; the others exactly, both clipped near those boxes.
 //! Every output block is therefore an exact height field (its milled shape
 //! is itself), blocks do not overlap, and the union is within T.
 //!
