@@ -212,7 +212,7 @@ std::optional<Candidate> evaluate(std::size_t i, std::size_t j, const State& s, 
     // outside it lies in the fill too.
     const std::optional<std::vector<BoundingBox>> columns = fill_face_columns(*u, m, axis);
     std::optional<std::vector<BoundingBox>> tiles;
-    if (columns) tiles = columns->empty() ? *columns : tile_columns(*columns, m, axis);
+    if (columns) tiles = tile_columns(*columns, m, axis);
     const bool inside = !s.filled[i] && !s.filled[j];
     // The deviation first (it rejects most), then collisions (exact booleans).
     // Where neither block sticks out, the union lies in the solid and only

@@ -68,7 +68,7 @@ MillToleranceResult mill_within_tolerance(const Mesh& solid, std::vector<Block> 
         else {
           std::optional<std::vector<BoundingBox>> faces = fill_face_columns(blocks[i].mesh, m.mesh, blocks[i].axis);
           if (faces) {
-            fill[i] = faces->empty() ? *faces : tile_columns(*faces, m.mesh, blocks[i].axis);
+            fill[i] = tile_columns(*faces, m.mesh, blocks[i].axis);
             columns[i] = std::move(*faces);
           }
           blocks[i].mesh = std::move(m.mesh);

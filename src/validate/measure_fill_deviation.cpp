@@ -455,8 +455,8 @@ std::vector<BoundingBox> tile_columns(const std::vector<BoundingBox>& boxes, con
 }
 
 std::optional<std::vector<BoundingBox>> fill_columns(const Mesh& carved, const Mesh& milled, Axis axis) {
-  std::optional<std::vector<BoundingBox>> columns = fill_face_columns(carved, milled, axis);
-  if (!columns || columns->empty()) return columns;
+  const std::optional<std::vector<BoundingBox>> columns = fill_face_columns(carved, milled, axis);
+  if (!columns) return std::nullopt;
   return tile_columns(*columns, milled, axis);
 }
 

@@ -223,7 +223,7 @@ std::optional<std::vector<BoundingBox>> fill_face_columns(const Mesh& carved, co
 
 //! fill_columns()'s tiling of such columns: one box per tile of an 8 x 8
 //! grid over the footprint of `milled` along `axis` (each column in the tile
-//! of its lowest corner).
+//! of its lowest corner; none when there are none).
 std::vector<BoundingBox> tile_columns(const std::vector<BoundingBox>& columns, const Mesh& milled, Axis axis);
 
 //! Closed boxes whose union covers a closed solid `part` (validate's check
