@@ -42,6 +42,7 @@ struct DecomposeArgs {
   double tolerance = 0.0;
   double tolerance_abs = std::numeric_limits<double>::infinity();
   double tolerance_floors = DecomposeOptions{}.tolerance_floor_scale;
+  double tolerance_locate = DecomposeOptions{}.tolerance_locate_margin;
   int tolerance_rounds = DecomposeOptions{}.tolerance_rounds;
   bool tolerance_given = false;  // --tolerance or --tolerance-abs on the command line (even 0)
   bool tolerance_fraction_given = false;  // --tolerance on the command line
@@ -132,6 +133,8 @@ int run_decompose(const DecomposeArgs& args) {
   // and 0 would mean exact blocks); a whole diagonal bounds nothing.
   if (!args.tolerance_fraction_given && std::isfinite(args.tolerance_abs)) options.tolerance_fraction = 1.0;
   options.tolerance_floor_scale = args.tolerance_floors;
+  options.tolerance_locate_margin = args.tolerance_locate;
+  options.tolerance_carry_boxes = args.tolerance_locate >= 0;  // negative: the rounds as before session 35
   options.tolerance_rounds = args.tolerance_rounds;
   // Where the thin-feature repair gives up, decompose within 5e-4 x diagonal
   // rather than fail, unless the user chose exactness or another trade.
@@ -407,6 +410,13 @@ void add_decompose_options(CLI::App& sub, DecomposeArgs& args) {
                  "down a level and their floors shrink with it, for up to 4 rounds (--tolerance-rounds); see "
                  "docs/decompose.md)")
       ->check(CLI::NonNegativeNumber);
+  sub.add_option("--tolerance-locate", args.tolerance_locate,
+                 "Within a tolerance T: where a block fails by points of the model made farther than T, only the "
+                 "faces over those points (their boxes widened across the block's axis by this x T) get smaller "
+                 "allowances in the next round, which starts from the boxes of the blocks that passed [1]; a "
+                 "negative value: the rounds as before 2026-12-07 (every face in a failing block's box lowered, each "
+                 "round grown afresh)")
+      ->check(CLI::Number);
   sub.add_option("--tolerance-rounds", args.tolerance_rounds,
                  "Within a tolerance: decompositions under allowances, each milled and measured, before the blocks "
                  "still beyond the tolerance are decomposed again on their own carved pieces (within it, then "

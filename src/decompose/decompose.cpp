@@ -7,6 +7,7 @@
 #include <chrono>
 #include <functional>
 #include <cstdint>
+#include <unordered_set>
 #include <numeric>
 #include <optional>
 #include <cmath>
@@ -151,7 +152,8 @@ Mesh repaired_in_input_frame(const Mesh& input, const Mesh& canonical, const Mes
 //! repair) although `solid` is a part of it with other edges (a carved
 //! piece: its cut faces have long edges).
 std::vector<Block> carve_stages(const Mesh& solid, const OverhangAllowances* allowances, const Mesh& input,
-                                const DecomposeOptions& options, DecomposeResult& result, bool input_spacing = false) {
+                                const DecomposeOptions& options, DecomposeResult& result, bool input_spacing = false,
+                                const std::vector<HeightBox>* carried = nullptr) {
   Progress* progress = options.progress;
   const double overhang = options.max_overhang_deg;
   const Vec3 machine = options.machine ? *options.machine : Vec3::Constant(std::numeric_limits<double>::infinity());
@@ -188,6 +190,7 @@ std::vector<Block> carve_stages(const Mesh& solid, const OverhangAllowances* all
     o.allowed_overhangs = allowed;
     o.overhang_floors = floors;
     o.max_overhang_deg = overhang;
+    o.carried = carried;
     o.progress = progress;
     grown = grow_boxes(solid, o);
     result.num_grown_boxes = grown.boxes.size();
@@ -302,23 +305,59 @@ std::vector<Block> carve_stages(const Mesh& solid, const OverhangAllowances* all
 //! it whose bounding box meets the block's (a block fails where the
 //! material left under its allowed faces is too deep or collides), except
 //! the pinned ones (`pinned`, per face, may be empty: the allowances a thin
-//! feature needs, see pinned_allowances()). Returns the number of
-//! allowances lowered.
+//! feature needs, see pinned_allowances()). Where the block failed by
+//! sampled points farther than T (milled.far_points) and `margin` >= 0
+//! (model units), only the faces over those points step down: those whose
+//! box, widened across the axis by `margin`, holds a point's projection (on
+//! a grid of cells of that size), so a large block failing in one corner
+//! keeps its allowances elsewhere (issue 17, session 35). Returns the number
+//! of allowances lowered.
 std::size_t lower_allowances(const Mesh& solid, const MillToleranceResult& milled, const std::vector<std::uint8_t>& allowed,
-                             const std::vector<std::uint8_t>& pinned, std::vector<std::array<std::uint8_t, 3>>& level) {
+                             const std::vector<std::uint8_t>& pinned, double margin,
+                             std::vector<std::array<std::uint8_t, 3>>& level) {
   std::vector<BoundingBox> face_boxes(solid.num_faces());
   for (std::size_t f = 0; f < solid.num_faces(); ++f)
     for (int v : solid.faces[f]) face_boxes[f].extend(solid.vertices[static_cast<std::size_t>(v)]);
   std::vector<std::array<std::uint8_t, 3>> lower(solid.num_faces(), {0, 0, 0});
+  const auto lowerable = [&](std::size_t f, std::uint8_t bit) {
+    return (allowed[f] & bit) && !(!pinned.empty() && (pinned[f] & bit));
+  };
   for (std::size_t i = 0; i < milled.blocks.size(); ++i) {
     if (milled.failures[i].empty()) continue;
     const BoundingBox box = bounding_box(milled.blocks[i].mesh);
     const int k = axis_dimension(milled.blocks[i].axis);
     const auto bit = static_cast<std::uint8_t>(1u << k);
-    for (std::size_t f = 0; f < solid.num_faces(); ++f) {
-      if ((allowed[f] & bit) && !(!pinned.empty() && (pinned[f] & bit)) && detail::boxes_touch(face_boxes[f], box))
-        lower[f][static_cast<std::size_t>(k)] = 1;
+    const std::vector<Vec3>* far = i < milled.far_points.size() && margin >= 0 ? &milled.far_points[i] : nullptr;
+    std::size_t located = 0;
+    if (far && !far->empty()) {
+      // The fill at a far point p lies under the faces above p along the
+      // axis: the faces whose boxes, widened across it by `margin`, hold
+      // p's projection (a grid of cells of that size over the points).
+      const int u = (k + 1) % 3, v = (k + 2) % 3;
+      const double cell = margin > 0 ? margin : std::max(box.diagonal() * 1e-9, 1e-300);
+      std::unordered_set<std::uint64_t> cells;
+      const auto key = [](std::int64_t a, std::int64_t b) {
+        return (static_cast<std::uint64_t>(a) << 32) ^ static_cast<std::uint64_t>(b & 0xffffffff);
+      };
+      const auto index = [&](double x, int d) { return static_cast<std::int64_t>(std::floor((x - box.min[d]) / cell)); };
+      for (const Vec3& p : *far) cells.insert(key(index(p[u], u), index(p[v], v)));
+      for (std::size_t f = 0; f < solid.num_faces(); ++f) {
+        if (!lowerable(f, bit) || !detail::boxes_touch(face_boxes[f], box)) continue;
+        const BoundingBox& fb = face_boxes[f];
+        const std::int64_t u0 = index(fb.min[u] - margin, u), u1 = index(fb.max[u] + margin, u);
+        const std::int64_t v0 = index(fb.min[v] - margin, v), v1 = index(fb.max[v] + margin, v);
+        bool over = false;
+        for (std::int64_t a = u0; a <= u1 && !over; ++a)
+          for (std::int64_t b = v0; b <= v1 && !over; ++b) over = cells.count(key(a, b)) > 0;
+        if (over) {
+          lower[f][static_cast<std::size_t>(k)] = 1;
+          ++located;
+        }
+      }
     }
+    if (located > 0) continue;
+    for (std::size_t f = 0; f < solid.num_faces(); ++f)
+      if (lowerable(f, bit) && detail::boxes_touch(face_boxes[f], box)) lower[f][static_cast<std::size_t>(k)] = 1;
   }
   std::size_t lowered = 0;
   for (std::size_t f = 0; f < solid.num_faces(); ++f)
@@ -515,10 +554,12 @@ std::vector<std::array<double, 3>> depths_within(const Mesh& solid, const Decomp
 //! (mill_within_tolerance()), timed as "tolerance".
 MillToleranceResult mill_stage(const Mesh& solid, std::vector<Block> blocks, const DecomposeOptions& options,
                                DecomposeResult& result, const std::vector<char>* measure = nullptr,
-                               const std::vector<double>* known_deviation = nullptr, bool stop_at_first_failure = false) {
+                               const std::vector<double>* known_deviation = nullptr, bool stop_at_first_failure = false,
+                               bool locate_failures = false) {
   StageScope stage(options.progress, "mill");
   const auto t = Clock::now();
   MillToleranceOptions mo;
+  mo.locate_failures = locate_failures;
   mo.tolerance = result.tolerance;
   mo.measure = measure;
   mo.known_deviation = known_deviation;
@@ -1040,9 +1081,30 @@ bool stages_within_tolerance(const Mesh& solid, const std::vector<std::array<dou
                    (with_floors ? ", " + std::to_string(result.num_floored_faces) +
                                       " more in boxes whose base lies close enough under them"
                                 : std::string()));
+  std::vector<HeightBox> carried;  // the boxes of the blocks that passed the last round (tolerance_carry_boxes)
+  // The rounds lower allowances only where blocks fail and carry the passing
+  // blocks' boxes over (session 35); when they would end on the pinned
+  // allowances alone (the exact path), the rounds run once more as before:
+  // every allowed face in a failing block's box lowered, every round grown
+  // afresh (egea at 8.3e-2: the first way's second round collides and its
+  // last cannot be decomposed in place; the second way passes in 2 rounds).
+  bool refined = options.tolerance_carry_boxes || options.tolerance_locate_margin >= 0;
+  const OverhangAllowances initial = allowed;
+  const auto second_chance = [&](int& round) {
+    if (!refined) return false;
+    refined = false;
+    level.assign(solid.num_faces(), {0, 0, 0});
+    allowed = initial;
+    carried.clear();
+    round = -1;
+    if (progress)
+      progress->info("the rounds again, each grown afresh, lowering the allowances in the whole box of each failing block");
+    return true;
+  };
   for (int round = 0;; ++round) {
     const std::size_t num_allowed = count_allowed_faces(allowed.bits);
-    blocks = carve_stages(solid, num_allowed > 0 ? &allowed : nullptr, input, options, result);
+    blocks = carve_stages(solid, num_allowed > 0 ? &allowed : nullptr, input, options, result, false,
+                          num_allowed > 0 && !carried.empty() ? &carried : nullptr);
     if (carve_limit > 0 && blocks.size() >= carve_limit)
       throw FallbackGivenUp("round " + std::to_string(round + 1) + " carved " + std::to_string(blocks.size()) +
                             " blocks, at least " + std::to_string(carve_limit));
@@ -1054,7 +1116,9 @@ bool stages_within_tolerance(const Mesh& solid, const std::vector<std::array<dou
     const bool last_round = round + 1 >= options.tolerance_rounds;
     std::vector<Block> carved;  // the last round's pieces, for replace_failed_blocks()
     if (last_round && options.tolerance_local_exact) carved = blocks;
-    MillToleranceResult milled = mill_stage(solid, std::move(blocks), options, result);
+    const double margin = refined ? options.tolerance_locate_margin * result.tolerance : -1.0;
+    MillToleranceResult milled =
+        mill_stage(solid, std::move(blocks), options, result, nullptr, nullptr, false, !last_round && margin >= 0);
     if (milled.num_failed() == 0) {
       blocks = std::move(milled.blocks);
       filled = std::move(milled.filled);
@@ -1068,14 +1132,30 @@ bool stages_within_tolerance(const Mesh& solid, const std::vector<std::array<dou
       if (replace_failed_blocks(solid, carved, milled, input, options, result, blocks, filled)) return true;
     }
     if (allowed == last) return false;  // nothing left to lower
+    carried.clear();
+    if (refined && options.tolerance_carry_boxes)
+      for (std::size_t i = 0; i < milled.blocks.size(); ++i) {
+        const int b = milled.blocks[i].source_box;
+        if (milled.failures[i].empty() && b >= 0 && static_cast<std::size_t>(b) < result.ordered_boxes.size())
+          carried.push_back(result.ordered_boxes[static_cast<std::size_t>(b)]);
+      }
     const OverhangAllowances before = allowed;
     if (last_round) {
+      if (second_chance(round)) continue;
       allowed = last;
     } else {
       const OverhangAllowances previous = allowed;
-      lower_allowances(solid, milled, allowed.bits, pinned, level);
-      allowed = allowances_with_floors(solid, depths, level, fractions, result.tolerance, floor_scale);
-      if (allowed == previous) allowed = last;  // the failing blocks meet pinned allowances only
+      // A level down can leave a face's allowance as it was (its depth
+      // within the next q x T too): step the same faces down until one
+      // changes, or none is left to lower.
+      for (std::size_t step = 0; step <= fractions.size() && allowed == previous; ++step) {
+        if (lower_allowances(solid, milled, previous.bits, pinned, margin, level) == 0) break;
+        allowed = allowances_with_floors(solid, depths, level, fractions, result.tolerance, floor_scale);
+      }
+      if (allowed == previous) {  // the failing blocks meet pinned allowances only
+        if (second_chance(round)) continue;
+        allowed = last;
+      }
     }
     if (progress) {
       std::string first;

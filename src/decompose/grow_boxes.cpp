@@ -458,6 +458,22 @@ GrowResult grow_boxes(const Mesh& mesh, const GrowOptions& options) {
       result.boxes = std::move(kept);
       result.covered.clear();  // recomputed on the final mesh
     }
+    // Boxes carried over from an earlier decomposition: candidates from the
+    // start where they are still valid (exact) and within the limits.
+    if (level == 0 && options.carried) {
+      // Its seed: the first face it covers (the earlier mesh's ids need not
+      // be this one's).
+      std::vector<int> seed(options.carried->size(), -1);
+      parallel_for(0, options.carried->size(), [&](std::size_t i) {
+        const HeightBox& hb = (*options.carried)[i];
+        if (!box_fits_limits(hb.box, hb.axis, options.max_height, options.machine_size) || !index.box_is_valid(hb))
+          return;
+        const std::vector<int> faces = index.faces_covered(hb);
+        if (!faces.empty()) seed[i] = faces.front();
+      });
+      for (std::size_t i = 0; i < seed.size(); ++i)
+        if (seed[i] >= 0) result.boxes.push_back(HeightBox{(*options.carried)[i].box, (*options.carried)[i].axis, seed[i]});
+    }
     std::vector<char> covered(static_cast<std::size_t>(nf), 0);
     std::size_t num_covered = 0;
     auto mark = [&](const std::vector<int>& faces) {
@@ -471,6 +487,7 @@ GrowResult grow_boxes(const Mesh& mesh, const GrowOptions& options) {
       std::vector<std::vector<int>> lists(result.boxes.size());
       parallel_for(0, result.boxes.size(), [&](std::size_t i) { lists[i] = index.faces_covered(result.boxes[i]); });
       for (const auto& l : lists) mark(l);
+      if (level == 0) result.covered = std::move(lists);  // the carried boxes' lists (valid while not refined)
     }
     std::vector<double> dist2(static_cast<std::size_t>(nf), kInf);
     std::vector<Vec3> centres(static_cast<std::size_t>(nf));

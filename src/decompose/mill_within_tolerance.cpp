@@ -53,6 +53,7 @@ MillToleranceResult mill_within_tolerance(const Mesh& solid, std::vector<Block> 
   r.filled.assign(n, 0);
   r.failures.assign(n, std::string());
   r.deviation.assign(n, 0.0);
+  r.far_points.assign(n, {});
 
   // 1. milled shapes, and the boxes that cover what they add (fill_columns())
   std::atomic<std::size_t> done{0};
@@ -195,9 +196,13 @@ MillToleranceResult mill_within_tolerance(const Mesh& solid, std::vector<Block> 
       which.push_back(r.failures[i].empty() && !(options.measure && !(*options.measure)[i]) ? 1 : 0);
     }
     if (std::count(which.begin(), which.end(), char{1}) > 0) {
-      const std::vector<double> low = fill_deviation_lower_bounds(solid, meshes, boxes_of, options.tolerance, which);
+      const bool locate = options.locate_failures && !options.stop_at_first_failure;
+      std::vector<std::vector<Vec3>> far;
+      const std::vector<double> low =
+          fill_deviation_lower_bounds(solid, meshes, boxes_of, options.tolerance, which, locate ? &far : nullptr);
       for (std::size_t k = 0; k < ids.size(); ++k)
         if (which[k] && low[k] > options.tolerance) {
+          if (locate) r.far_points[ids[k]] = std::move(far[k]);
           r.failures[ids[k]] = "its milled shape deviates at least " + format_length(low[k]) +
                                " (a sampled point) > the tolerance " + format_length(options.tolerance);
           r.stopped = options.stop_at_first_failure;

@@ -17,6 +17,7 @@
 
 #include "decompose/block_pairs_detail.h"
 #include "geometry/clip_solid_to_box.h"
+#include "validate/validate_booleans.h"
 #include "geometry/deterministic_arena.h"
 #include "geometry/exact_mesh.h"
 #include "geometry/solid_index.h"
@@ -181,6 +182,10 @@ std::optional<std::vector<Block>> split_block(const Block& block, int k, double 
   const BoundingBox box = bounding_box(block.mesh);
   const double margin = std::max(1.0, box.diagonal());
   std::optional<std::vector<Block>> out;
+  // CGAL's corefinement may crash (not throw) on a mesh that intersects
+  // itself or has zero-area faces: such a block is not split (egea at
+  // 8.3e-2, session 35: a merged sliver, SIGSEGV in the clip).
+  if (!detail::boolean_input_defect(block.mesh, true).empty()) return out;
   detail::warm_up_exact_booleans();
   const detail::SolidIndex index(block.mesh);
   std::vector<Mesh> meshes;

@@ -37,11 +37,13 @@ void for_each_sample(const Vec3& a, const Vec3& b, const Vec3& c, const Visit& v
 
 std::vector<double> fill_deviation_lower_bounds(const Mesh& solid, const std::vector<const Mesh*>& filled,
                                                 const std::vector<std::optional<std::vector<BoundingBox>>>& fills,
-                                                double stop, const std::vector<char>& which) {
+                                                double stop, const std::vector<char>& which,
+                                                std::vector<std::vector<Vec3>>* far) {
   const std::size_t n = filled.size();
   if (fills.size() != n || (!which.empty() && which.size() != n))
     throw InvalidArgumentError("fill_deviation_lower_bounds: one fill and one flag per filled block expected");
   std::vector<double> bound(n, 0.0);
+  if (far) far->assign(n, {});
   if (n == 0 || solid.faces.empty()) return bound;
   const detail::SolidIndex inside(solid);
   detail::TriangleTree surface(solid);
@@ -58,8 +60,16 @@ std::vector<double> fill_deviation_lower_bounds(const Mesh& solid, const std::ve
     if (!which.empty() && !which[k]) return;
     const Mesh& m = *filled[k];
     double best = 0.0;
-    const auto not_done = [&] { return !(best > stop); };
-    for (std::size_t f = 0; f < m.faces.size() && !(best > stop); ++f) {
+    std::vector<Vec3>* out = far ? &(*far)[k] : nullptr;
+    const auto not_done = [&] { return out || !(best > stop); };
+    // a sample is worth the exact tests when it raises the bound or, when
+    // collecting, lies beyond `stop`
+    const auto worth = [&](double d) { return d > best || (out && d > stop); };
+    const auto found = [&](double d, const Vec3& p) {
+      best = std::max(best, d);
+      if (out && d > stop) out->push_back(p);
+    };
+    for (std::size_t f = 0; f < m.faces.size() && not_done(); ++f) {
       const Vec3& a = m.vertices[static_cast<std::size_t>(m.faces[f][0])];
       const Vec3& b = m.vertices[static_cast<std::size_t>(m.faces[f][1])];
       const Vec3& c = m.vertices[static_cast<std::size_t>(m.faces[f][2])];
@@ -76,20 +86,20 @@ std::vector<double> fill_deviation_lower_bounds(const Mesh& solid, const std::ve
           [&](const Vec3& p) {
             const auto q = detail::TriangleTree::point(p);
             const double d = std::sqrt(CGAL::squared_distance(q, surface.tree().closest_point(q)));
-            if (!(d > best) || inside.is_inside(p)) return;
+            if (!worth(d) || inside.is_inside(p)) return;
             for (std::size_t j = 0; j < n; ++j) {
               if (j == k || !box_contains(boxes[j], p, contact)) continue;
               others[j].build(*filled[j]);
               const double e = std::sqrt(CGAL::squared_distance(q, others[j].surface->tree().closest_point(q)));
               if (e <= contact || others[j].index->is_inside(p)) return;  // on or in another fill
             }
-            best = d;
+            found(d, p);
           },
           not_done);
     }
     // The other way: a point x of ∂S inside F_k is at least d(x, ∂F_k) from
     // ∂S' (the open ball of that radius lies in F_k, so in the interior of S').
-    if (!(best > stop)) {
+    if (not_done()) {
       others[k].build(m);
       const detail::SolidIndex& in_block = *others[k].index;
       const detail::TriangleTree& block_surface = *others[k].surface;
@@ -110,7 +120,7 @@ std::vector<double> fill_deviation_lower_bounds(const Mesh& solid, const std::ve
       std::sort(faces.begin(), faces.end());
       faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
       for (std::size_t f : faces) {
-        if (best > stop) break;
+        if (!not_done()) break;
         const Vec3& a = solid.vertices[static_cast<std::size_t>(solid.faces[f][0])];
         const Vec3& b = solid.vertices[static_cast<std::size_t>(solid.faces[f][1])];
         const Vec3& c = solid.vertices[static_cast<std::size_t>(solid.faces[f][2])];
@@ -119,7 +129,7 @@ std::vector<double> fill_deviation_lower_bounds(const Mesh& solid, const std::ve
             [&](const Vec3& p) {
               const auto q = detail::TriangleTree::point(p);
               const double d = std::sqrt(CGAL::squared_distance(q, block_surface.tree().closest_point(q)));
-              if (d > best && in_block.is_inside(p)) best = d;
+              if (worth(d) && in_block.is_inside(p)) found(d, p);
             },
             not_done);
       }

@@ -73,6 +73,35 @@ TEST(GrowBoxes, LShapeBoxesAreExactlyValid) {
   EXPECT_TRUE(whole);
 }
 
+// Boxes carried over from an earlier round (decompose() within a
+// tolerance, session 35): the whole L along +z is valid and covers every
+// face, so it is kept (its seed a face it covers) and no seed is grown; the
+// whole L along -z is invalid (the step's top faces +z above the base plane)
+// and a box taller than the height limit does not fit: both dropped.
+TEST(GrowBoxes, CarriedBoxesAreKeptWhereValidAndNothingIsGrownWhereTheyCover) {
+  const Mesh l = l_in_xz();
+  const Box3 whole{Vec3(0, 0, 0), Vec3(2, 1, 2)};
+  const std::vector<HeightBox> carried{{whole, Axis::PosZ, 7}, {whole, Axis::NegZ, 3}};
+  GrowOptions o;
+  o.carried = &carried;
+  const GrowResult r = grow_boxes(l, o);
+  expect_valid_cover(r);
+  ASSERT_EQ(r.boxes.size(), 1u);
+  EXPECT_EQ(r.boxes[0].axis, Axis::PosZ);
+  EXPECT_EQ(r.boxes[0].box.min, whole.min);
+  EXPECT_EQ(r.boxes[0].box.max, whole.max);
+  EXPECT_EQ(r.num_seeds, 0);
+  // Under a height limit of 1.5 the carried box does not fit: grown afresh.
+  o.max_height = 1.5;
+  const GrowResult limited = grow_boxes(l, o);
+  expect_valid_cover(limited);
+  EXPECT_GT(limited.num_seeds, 0);
+  for (const HeightBox& hb : limited.boxes) {
+    const int k = axis_dimension(hb.axis);
+    EXPECT_LE(hb.box.max[k] - hb.box.min[k], 1.5) << axis_name(hb.axis);
+  }
+}
+
 TEST(GrowBoxes, TShapeBoxesAreExactlyValid) {
   Mesh t = test::make_t_shape();
   for (Vec3& v : t.vertices) std::swap(v.y(), v.z());

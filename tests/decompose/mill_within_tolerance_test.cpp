@@ -111,6 +111,31 @@ TEST(MillWithinTolerance, ASampledPointBeyondTheToleranceFailsTheBlockBeforeItsM
   EXPECT_EQ(wide.num_failed(), 0u);
 }
 
+// With locate_failures, a block the sampled bound fails says where: every
+// sampled point farther than T lies in the groove's fill (the outer ring,
+// z in [4, 6]), where decompose() lowers the allowances (session 35);
+// without it, or for a candidate stopped at its first failure, none.
+TEST(MillWithinTolerance, AFailingBlockLocatesItsFarPointsInItsFill) {
+  const Mesh box = voxel_mesh(grooved_box_cells());
+  MillToleranceOptions o;
+  o.tolerance = 0.9;
+  EXPECT_TRUE(mill_within_tolerance(box, whole_box(box), o).far_points.at(0).empty());
+  o.locate_failures = true;
+  const MillToleranceResult r = mill_within_tolerance(box, whole_box(box), o);
+  ASSERT_EQ(r.num_failed(), 1u);
+  ASSERT_FALSE(r.far_points.at(0).empty());
+  for (const Vec3& p : r.far_points[0]) {
+    EXPECT_TRUE(p.x() <= 1 || p.x() >= 9 || p.y() <= 1 || p.y() >= 9) << p.transpose();
+    EXPECT_GE(p.z(), 4.0);
+    EXPECT_LE(p.z(), 6.0);
+  }
+  o.stop_at_first_failure = true;
+  EXPECT_TRUE(mill_within_tolerance(box, whole_box(box), o).far_points.at(0).empty());
+  o.stop_at_first_failure = false;
+  o.tolerance = 1.5;  // passes: nothing to locate
+  EXPECT_TRUE(mill_within_tolerance(box, whole_box(box), o).far_points.at(0).empty());
+}
+
 // Regression (session 32, max planck at 3.3e-3): the carved blocks do not
 // overlap, so a pair is checked for a collision only where a fill reaches the
 // other block. The grooved box with its top corner [5, 10]^2 x [7, 10] carved

@@ -244,6 +244,29 @@ TEST(RemoveSlivers, ASliverWithAThickLumpIsSplitAndItsSheetDropped) {
   for (std::size_t i : {0u, 2u, 3u}) EXPECT_EQ(r.blocks[i].mesh.vertices, blocks[i].mesh.vertices);
 }
 
+// Regression (egea.obj at --tolerance 8.3e-2 --max-height 0.1, session 35:
+// SIGSEGV in CGAL's corefinement while the sliver stage clipped a block that
+// intersected itself). The sheet-with-lump sliver with a small box crossing
+// its bottom face added to its mesh: a mesh that intersects itself is never
+// split (the exact clip is not run on it); the stage ends normally.
+TEST(RemoveSlivers, ASliverThatIntersectsItselfIsNotSplit) {
+  auto [solid, blocks] = sheet_with_lump();
+  Mesh& s = blocks[1].mesh;
+  const Mesh extra = box_solid({5, 4, 3.7}, {6, 5, 4.0});
+  const int offset = static_cast<int>(s.vertices.size());
+  s.vertices.insert(s.vertices.end(), extra.vertices.begin(), extra.vertices.end());
+  for (Triangle t : extra.faces) {
+    for (int& v : t) v += offset;
+    s.faces.push_back(t);
+  }
+  SliverRemovalOptions o = within_half();
+  o.max_height = 3.9;
+  o.thicken = false;
+  const SliverRemovalResult r = remove_slivers(solid, blocks, o);
+  EXPECT_EQ(r.num_split, 0u);
+  EXPECT_EQ(r.blocks.size() + r.num_dropped + r.num_merged, blocks.size());
+}
+
 //! Regression (bunny_lowres.off at --tolerance 1e-3, 2026-12-05, bench sweep):
 //! the sliver stage left block 124 (0.84 T thick where the model is 269 T:
 //! no drop, merge or split within T) and validate's check 9 failed. Its

@@ -37,6 +37,29 @@ TEST(FillDeviationLowerBound, AColumnSticking3OutOfACubeIsBoundedBy3) {
   EXPECT_THROW(fill_deviation_lower_bounds(solid, {&column}, {}, kInf), InvalidArgumentError);
 }
 
+// Collecting the far points: the search goes on past `stop` (the bound is
+// then the maximum, 3), and every point collected lies farther than `stop`
+// from S: on F above z = 11 (its top, and its sides' samples there).
+TEST(FillDeviationLowerBound, FarPointsAreEverySampleBeyondTheStop) {
+  const Mesh solid = make_box_mesh(Vec3(0, 0, 0), Vec3(10, 10, 10));
+  const Mesh column = make_box_mesh(Vec3(2, 2, 5), Vec3(4, 4, 13));
+  std::vector<std::vector<Vec3>> far;
+  const std::vector<double> b = fill_deviation_lower_bounds(solid, {&column}, {std::nullopt}, 1.0, {}, &far);
+  EXPECT_DOUBLE_EQ(b.at(0), 3.0);
+  ASSERT_EQ(far.size(), 1u);
+  ASSERT_FALSE(far[0].empty());
+  bool top = false;
+  for (const Vec3& p : far[0]) {
+    EXPECT_GT(p.z(), 11.0) << p.transpose();
+    EXPECT_TRUE(p.x() >= 2 && p.x() <= 4 && p.y() >= 2 && p.y() <= 4) << p.transpose();
+    top = top || p.z() == 13.0;
+  }
+  EXPECT_TRUE(top);
+  // A stop above every distance: nothing collected.
+  fill_deviation_lower_bounds(solid, {&column}, {std::nullopt}, 3.0, {}, &far);
+  EXPECT_TRUE(far.at(0).empty());
+}
+
 // A second filled box G = [2, 4]^2 x [13, 15] on top of F: F's top is then
 // a contact face inside the model made (not on its surface), so F's bound
 // drops from 3 to its sides' samples; G's own top lies 5 from S. A box inside S deviates 0.

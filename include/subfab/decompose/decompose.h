@@ -103,6 +103,17 @@ struct DecomposeOptions {
                                     // never more blocks than per face on the models measured, often far fewer
                                     // (airplane at 1.8e-3 9 vs 18, cube spike at 9.8e-4 and height 0.4 5 vs 6;
                                     // bench/RESULTS.md); 0.5 and 1 fail the measure on curved undersides
+  bool tolerance_carry_boxes = true;  // within a tolerance: a round after a failing one starts from the boxes of
+                                    // the blocks that passed (those still valid under the lowered allowances: grow
+                                    // seeds only where none holds), so a round changes the decomposition where
+                                    // blocks failed and little elsewhere (false: every round grown afresh, before
+                                    // session 35)
+  double tolerance_locate_margin = 1.0;  // within a tolerance, where a block fails by a sampled point farther than T
+                                    // (the lower bound's): only the faces allowed along its axis whose boxes,
+                                    // widened across the axis by this x T, lie over such a point (within the
+                                    // block's box) step down a level, not every face in its box (>= 0, unitless;
+                                    // the block's whole box where none is found, or for another failure); < 0:
+                                    // the whole box always (before session 35)
   std::vector<double> tolerance_overhang_ladder_deg = {5, 10, 15, 20, 30, 45};  // within a tolerance, when the
                                     // blocks deviate at most tolerance_ladder_slack x T: decompositions where every
                                     // face leaning at most this many degrees past vertical may lean

@@ -82,6 +82,11 @@ struct GrowOptions {
                                   // dimension k: the allowance of bit k holds only in boxes whose base (min of x.d
                                   // over the box, d the direction along e_k the face faces away from) is >= this
                                   // (-inf: every box; see solid_index.h and tolerance_allowances.h); nullptr = every box
+  const std::vector<HeightBox>* carried = nullptr;  // boxes kept from an earlier decomposition of the same
+                                  // solid (decompose()'s rounds within a tolerance: the boxes of the blocks that
+                                  // passed the measure): each one still exactly valid under these allowances and
+                                  // within the limits is a candidate from the start, its faces covered, so seeds
+                                  // grow only where none holds (nullptr = none)
 
   Progress* progress = nullptr;     // updates (faces covered / total) and warnings; nullptr = silent
 };

@@ -59,6 +59,10 @@ struct MillToleranceOptions {
                                      // already fails a block, the exact measure is not run: every filled block not
                                      // failed yet fails as "not measured" (MillToleranceResult::stopped); for a
                                      // candidate that any failure rejects (decompose()'s overhang ladder)
+  bool locate_failures = false;      // true: the sampled lower bound goes on past the first point beyond T and
+                                     // records every such point (MillToleranceResult::far_points; its cost: every
+                                     // sample of a failing block, as for a passing one); decompose()'s rounds lower
+                                     // the allowances there only
   Progress* progress = nullptr;      // updates per block and info (nullptr: silent)
 };
 
@@ -73,6 +77,10 @@ struct MillToleranceResult {
   std::size_t num_bounded = 0;        // filled blocks kept within the tolerance by the bound over their parts
                                       // outside the solid (fill_deviation_upper_bound.h): not measured in
                                       // regions, their deviation is that bound
+  std::vector<std::vector<Vec3>> far_points;  // per block, with locate_failures: the sampled points of the model
+                                      // made (or of the input under a fill) farther than T from the other surface,
+                                      // where its fill makes the model deviate; empty when the block passes or fails
+                                      // for another reason (collision, not a height field, the exact measure)
   std::size_t num_failed() const;
 };
 

@@ -43,8 +43,15 @@ namespace subfab {
 //! \param filled the milled shapes F_k that stick out of S (all of them: each is "another" for the rest)
 //! \param fills  per filled block, boxes covering its fill (fill_columns()); nullopt: every face sampled
 //! \param which  per filled block, whether to bound it (empty: all)
+//! \param far    not null: per filled block, every sampled point whose
+//!        distance exceeds `stop` (of ∂S' or of ∂S, see the file comment:
+//!        where the block's fill makes the model deviate), the search then
+//!        going on over all its samples instead of stopping; the caller
+//!        locates a failure with them (decompose() lowers the allowances of
+//!        the faces above them only)
 std::vector<double> fill_deviation_lower_bounds(const Mesh& solid, const std::vector<const Mesh*>& filled,
                                                 const std::vector<std::optional<std::vector<BoundingBox>>>& fills,
-                                                double stop, const std::vector<char>& which = {});
+                                                double stop, const std::vector<char>& which = {},
+                                                std::vector<std::vector<Vec3>>* far = nullptr);
 
 }  // namespace subfab
