@@ -19,6 +19,7 @@
 #include "subfab/checks/check_self_intersections.h"
 #include "subfab/mesh/float32.h"
 #include "subfab/validate/check_single_precision.h"
+#include "validate/validate_booleans.h"
 
 namespace subfab::detail {
 namespace {
@@ -299,6 +300,9 @@ std::optional<Mesh> clip_extreme_slabs(const Mesh& machine, double gap) {
     }
   }
   if (!any) return std::nullopt;
+  // CGAL's corefinement may crash (not throw) on a mesh the exact booleans
+  // refuse (self-intersections, zero-area faces): not clipped then.
+  if (!boolean_input_defect(machine, true).empty()) return std::nullopt;
   std::optional<Mesh> out;
   warm_up_exact_booleans();
   const SolidIndex index(machine);
