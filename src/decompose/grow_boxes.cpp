@@ -459,20 +459,17 @@ GrowResult grow_boxes(const Mesh& mesh, const GrowOptions& options) {
       result.covered.clear();  // recomputed on the final mesh
     }
     // Boxes carried over from an earlier decomposition: candidates from the
-    // start where they are still valid (exact) and within the limits.
+    // start where they are still valid (exact), within the limits and
+    // covering a face (their seed: the first one, set below; the earlier
+    // mesh's face ids need not be this one's).
     if (level == 0 && options.carried) {
-      // Its seed: the first face it covers (the earlier mesh's ids need not
-      // be this one's).
-      std::vector<int> seed(options.carried->size(), -1);
+      std::vector<char> keep(options.carried->size(), 0);
       parallel_for(0, options.carried->size(), [&](std::size_t i) {
         const HeightBox& hb = (*options.carried)[i];
-        if (!box_fits_limits(hb.box, hb.axis, options.max_height, options.machine_size) || !index.box_is_valid(hb))
-          return;
-        const std::vector<int> faces = index.faces_covered(hb);
-        if (!faces.empty()) seed[i] = faces.front();
+        keep[i] = limits.fits(hb.box, hb.axis) && index.box_is_valid(hb);
       });
-      for (std::size_t i = 0; i < seed.size(); ++i)
-        if (seed[i] >= 0) result.boxes.push_back(HeightBox{(*options.carried)[i].box, (*options.carried)[i].axis, seed[i]});
+      for (std::size_t i = 0; i < keep.size(); ++i)
+        if (keep[i]) result.boxes.push_back(HeightBox{(*options.carried)[i].box, (*options.carried)[i].axis, -1});
     }
     std::vector<char> covered(static_cast<std::size_t>(nf), 0);
     std::size_t num_covered = 0;
@@ -487,7 +484,15 @@ GrowResult grow_boxes(const Mesh& mesh, const GrowOptions& options) {
       std::vector<std::vector<int>> lists(result.boxes.size());
       parallel_for(0, result.boxes.size(), [&](std::size_t i) { lists[i] = index.faces_covered(result.boxes[i]); });
       for (const auto& l : lists) mark(l);
-      if (level == 0) result.covered = std::move(lists);  // the carried boxes' lists (valid while not refined)
+      if (level == 0) {  // the carried boxes (valid lists while the mesh is not refined)
+        std::vector<HeightBox> kept;
+        for (std::size_t i = 0; i < lists.size(); ++i)
+          if (!lists[i].empty()) {
+            kept.push_back(HeightBox{result.boxes[i].box, result.boxes[i].axis, lists[i].front()});
+            result.covered.push_back(std::move(lists[i]));
+          }
+        result.boxes = std::move(kept);
+      }
     }
     std::vector<double> dist2(static_cast<std::size_t>(nf), kInf);
     std::vector<Vec3> centres(static_cast<std::size_t>(nf));

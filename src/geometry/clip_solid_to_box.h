@@ -25,7 +25,12 @@ namespace subfab::detail {
 //! solid (each region decided exactly at one of its border edges, from the
 //! two solid faces on that edge).
 //! `index` is the SolidIndex of `solid`; an empty result when the box has
-//! zero volume or lies outside the solid.
+//! zero volume or lies outside the solid. `solid` must be one the exact
+//! booleans accept (no self-intersection, no zero-area face): CGAL 5.5's
+//! corefinement can crash on others rather than throw, so a caller whose
+//! mesh is not known to be such a solid (a block, not the checked input)
+//! tests boolean_input_defect() first (remove_slivers.cpp,
+//! single_precision_cleanup.cpp).
 //! \throw AlgorithmError when the exact result cannot be made closed
 //!        2-manifold pieces (a boolean failed).
 std::vector<ExactMesh> clip_solid_to_box(const Mesh& solid, const SolidIndex& index, const Box3& box);
