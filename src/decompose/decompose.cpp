@@ -555,7 +555,7 @@ std::vector<std::array<double, 3>> depths_within(const Mesh& solid, const Decomp
 MillToleranceResult mill_stage(const Mesh& solid, std::vector<Block> blocks, const DecomposeOptions& options,
                                DecomposeResult& result, const std::vector<char>* measure = nullptr,
                                const std::vector<double>* known_deviation = nullptr, bool stop_at_first_failure = false,
-                               bool locate_failures = false) {
+                               bool locate_failures = false, MillCache* cache = nullptr) {
   StageScope stage(options.progress, "mill");
   const auto t = Clock::now();
   MillToleranceOptions mo;
@@ -564,6 +564,7 @@ MillToleranceResult mill_stage(const Mesh& solid, std::vector<Block> blocks, con
   mo.measure = measure;
   mo.known_deviation = known_deviation;
   mo.stop_at_first_failure = stop_at_first_failure;
+  mo.cache = cache;
   mo.progress = options.progress;
   MillToleranceResult milled = mill_within_tolerance(solid, std::move(blocks), mo);
   result.timings.tolerance += seconds_since(t);
@@ -594,7 +595,8 @@ MillToleranceResult mill_stage(const Mesh& solid, std::vector<Block> blocks, con
 //! or its exact decomposition fails: the caller then takes the exact path.
 bool replace_failed_blocks(const Mesh& solid, const std::vector<Block>& round_carved,
                            const MillToleranceResult& round_milled, const Mesh& input, const DecomposeOptions& options,
-                           DecomposeResult& result, std::vector<Block>& blocks, std::vector<char>& filled) {
+                           DecomposeResult& result, std::vector<Block>& blocks, std::vector<char>& filled,
+                           MillCache* cache = nullptr) {
   Progress* progress = options.progress;
   std::vector<Block> carved = round_carved;
   MillToleranceResult milled = round_milled;
@@ -701,7 +703,7 @@ bool replace_failed_blocks(const Mesh& solid, const std::vector<Block>& round_ca
     }
     carved = next;  // the pieces again: mill_stage() makes the milled shapes from them
     level = std::move(next_level);
-    milled = mill_stage(solid, std::move(next), options, result, &measure, &known);
+    milled = mill_stage(solid, std::move(next), options, result, &measure, &known, false, false, cache);
   }
   blocks = std::move(milled.blocks);
   filled = std::move(milled.filled);
@@ -1082,6 +1084,7 @@ bool stages_within_tolerance(const Mesh& solid, const std::vector<std::array<dou
                                       " more in boxes whose base lies close enough under them"
                                 : std::string()));
   std::vector<HeightBox> carried;  // the boxes of the blocks that passed the last round (tolerance_carry_boxes)
+  MillCache cache;                 // the blocks the rounds milled: a block carved again unchanged is not milled again
   // The rounds lower allowances only where blocks fail and carry the passing
   // blocks' boxes over (session 35); when they would end on the pinned
   // allowances alone (the exact path), the rounds run once more as before:
@@ -1118,7 +1121,7 @@ bool stages_within_tolerance(const Mesh& solid, const std::vector<std::array<dou
     if (last_round && options.tolerance_local_exact) carved = blocks;
     const double margin = refined ? options.tolerance_locate_margin * result.tolerance : -1.0;
     MillToleranceResult milled =
-        mill_stage(solid, std::move(blocks), options, result, nullptr, nullptr, false, !last_round && margin >= 0);
+        mill_stage(solid, std::move(blocks), options, result, nullptr, nullptr, false, !last_round && margin >= 0, &cache);
     if (milled.num_failed() == 0) {
       blocks = std::move(milled.blocks);
       filled = std::move(milled.filled);
@@ -1129,14 +1132,33 @@ bool stages_within_tolerance(const Mesh& solid, const std::vector<std::array<dou
       if (progress)
         progress->info(std::to_string(milled.num_failed()) + " block(s) beyond the tolerance after " +
                        std::to_string(round + 1) + " round(s): decomposing their carved pieces again, each on its own");
-      if (replace_failed_blocks(solid, carved, milled, input, options, result, blocks, filled)) return true;
+      if (replace_failed_blocks(solid, carved, milled, input, options, result, blocks, filled, &cache)) return true;
     }
     if (allowed == last) return false;  // nothing left to lower
+    // A round that carried boxes over and fails only by collisions: the
+    // milled shapes collide where a carried box meets a box grown around
+    // it, not because an allowance is too large (egea at 8.3e-2: round 2's
+    // carried block collides with the one grown again next to it; lowering
+    // the whole box of the colliding block, twice, ended on the exact
+    // path). The same allowances are tried once more, grown afresh.
+    const bool only_collisions = [&] {
+      for (std::size_t i = 0; i < milled.failures.size(); ++i)
+        if (!milled.failures[i].empty() && !milled.collided[i]) return false;
+      return true;
+    }();
+    if (refined && !carried.empty() && only_collisions && !last_round) {
+      carried.clear();
+      if (progress)
+        progress->info(std::to_string(milled.num_failed()) + " block(s) beyond the tolerance, every one by a collision "
+                       "next to boxes carried over: the same allowances again, grown afresh");
+      continue;
+    }
     carried.clear();
     if (refined && options.tolerance_carry_boxes)
       for (std::size_t i = 0; i < milled.blocks.size(); ++i) {
         const int b = milled.blocks[i].source_box;
-        if (milled.failures[i].empty() && b >= 0 && static_cast<std::size_t>(b) < result.ordered_boxes.size())
+        if (milled.failures[i].empty() && !milled.collided[i] && b >= 0 &&
+            static_cast<std::size_t>(b) < result.ordered_boxes.size())
           carried.push_back(result.ordered_boxes[static_cast<std::size_t>(b)]);
       }
     const OverhangAllowances before = allowed;
@@ -1206,6 +1228,7 @@ void overhang_ladder_stage(const Mesh& solid, const std::vector<std::uint8_t>& p
     add_stage_times(timings, cand.timings, base.timings);
     timings.tolerance += cand.timings.tolerance - base.timings.tolerance;
   };
+  MillCache cache;  // blocks the angles carve alike are milled once
   for (const double deg : options.tolerance_overhang_ladder_deg) {
     if (result.blocks.size() <= 1) break;
     OverhangAllowances allowed = uniform_overhang_allowances(solid, deg);
@@ -1230,7 +1253,7 @@ void overhang_ladder_stage(const Mesh& solid, const std::vector<std::uint8_t>& p
         continue;
       }
       const std::vector<Block> pieces = carved;  // for replace_failed_blocks()
-      MillToleranceResult milled = mill_stage(solid, std::move(carved), options, cand, nullptr, nullptr, true);
+      MillToleranceResult milled = mill_stage(solid, std::move(carved), options, cand, nullptr, nullptr, true, false, &cache);
       std::vector<Block> cand_blocks;
       std::vector<char> cand_filled;
       const bool failed = milled.num_failed() > 0;
@@ -1247,7 +1270,7 @@ void overhang_ladder_stage(const Mesh& solid, const std::vector<std::uint8_t>& p
           progress->info(at + std::to_string(milled.num_failed()) + " of " + std::to_string(milled.blocks.size()) +
                          " milled shapes beyond the tolerance: decomposing their carved pieces again, each on its "
                          "own; the ladder ends here");
-        if (!replace_failed_blocks(solid, pieces, milled, input, options, cand, cand_blocks, cand_filled)) {
+        if (!replace_failed_blocks(solid, pieces, milled, input, options, cand, cand_blocks, cand_filled, &cache)) {
           add_times(cand);
           break;
         }

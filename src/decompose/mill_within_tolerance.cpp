@@ -4,9 +4,12 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <memory>
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <utility>
 
 #include "decompose/block_pairs_detail.h"
@@ -31,7 +34,69 @@ std::string format_length(double v) {
   return buf;
 }
 
+//! FNV-1a over raw bytes, continued from `h`.
+std::uint64_t hash_bytes(const void* data, std::size_t size, std::uint64_t h = 1469598103934665603ull) {
+  const auto* p = static_cast<const unsigned char*>(data);
+  for (std::size_t i = 0; i < size; ++i) h = (h ^ p[i]) * 1099511628211ull;
+  return h;
+}
+
+std::uint64_t hash_mesh(const Mesh& m, std::uint64_t h = 1469598103934665603ull) {
+  h = hash_bytes(m.vertices.data(), m.vertices.size() * sizeof(Vec3), h);
+  return hash_bytes(m.faces.data(), m.faces.size() * sizeof(Triangle), h);
+}
+
+bool same_bytes(const Mesh& a, const Mesh& b) {
+  return a.vertices.size() == b.vertices.size() && a.faces.size() == b.faces.size() &&
+         std::memcmp(a.vertices.data(), b.vertices.data(), a.vertices.size() * sizeof(Vec3)) == 0 &&
+         std::memcmp(a.faces.data(), b.faces.data(), a.faces.size() * sizeof(Triangle)) == 0;
+}
+
 }  // namespace
+
+struct MillCache::Impl {
+  //! One block and what step 1 and step 3a made of it.
+  struct Entry {
+    Mesh block;                 // the carved block, as given
+    Axis axis = Axis::PosZ;
+    std::string failure;        // step 1's failure (no closed height field, or not computed)
+    char filled = 0;
+    Mesh milled;                // its milled shape (when filled)
+    std::optional<std::vector<BoundingBox>> fill;
+    std::vector<BoundingBox> columns;
+    bool complete = false;       // step 1 filled it in (an entry made by a call that threw is not)
+    bool outside_known = false;  // step 3a ran on it: `outside` is its result (nullopt: it threw)
+    std::optional<detail::OutsidePart> outside;
+  };
+  bool bound = false;
+  std::uint64_t solid_key = 0;
+  std::unordered_multimap<std::uint64_t, std::shared_ptr<Entry>> entries;
+  std::size_t hits = 0;
+
+  static std::uint64_t key(const Mesh& block, Axis axis) {
+    const int a = static_cast<int>(axis);
+    return hash_mesh(block, hash_bytes(&a, sizeof a));
+  }
+  //! Binds the cache to `solid`, emptying it when it held another.
+  void bind(const Mesh& solid) {
+    const std::uint64_t k = hash_mesh(solid);
+    if (bound && k == solid_key) return;
+    entries.clear();
+    bound = true;
+    solid_key = k;
+  }
+  std::shared_ptr<Entry> find(const Mesh& block, Axis axis, std::uint64_t k) const {
+    const auto [begin, end] = entries.equal_range(k);
+    for (auto it = begin; it != end; ++it)
+      if (it->second->complete && it->second->axis == axis && same_bytes(it->second->block, block)) return it->second;
+    return nullptr;
+  }
+};
+
+MillCache::MillCache() : impl_(std::make_unique<Impl>()) {}
+MillCache::~MillCache() = default;
+std::size_t MillCache::size() const { return impl_->entries.size(); }
+std::size_t MillCache::hits() const { return impl_->hits; }
 
 std::size_t MillToleranceResult::num_failed() const {
   return static_cast<std::size_t>(
@@ -54,12 +119,49 @@ MillToleranceResult mill_within_tolerance(const Mesh& solid, std::vector<Block> 
   r.failures.assign(n, std::string());
   r.deviation.assign(n, 0.0);
   r.far_points.assign(n, {});
+  r.collided.assign(n, 0);
+
+  // 0. the blocks milled before on this solid (options.cache)
+  using Entry = MillCache::Impl::Entry;
+  std::vector<std::shared_ptr<Entry>> entry(n);  // per block: its cache entry (found, or made below)
+  std::vector<char> hit(n, 0);
+  std::size_t num_hits = 0;
+  if (options.cache) {
+    MillCache::Impl& cache = options.cache->impl();
+    cache.bind(solid);
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::uint64_t k = MillCache::Impl::key(blocks[i].mesh, blocks[i].axis);
+      entry[i] = cache.find(blocks[i].mesh, blocks[i].axis, k);
+      if (entry[i]) {
+        hit[i] = 1;
+        ++num_hits;
+        continue;
+      }
+      entry[i] = std::make_shared<Entry>();
+      entry[i]->block = blocks[i].mesh;
+      entry[i]->axis = blocks[i].axis;
+      cache.entries.emplace(k, entry[i]);
+    }
+    cache.hits += num_hits;
+  }
 
   // 1. milled shapes, and the boxes that cover what they add (fill_columns())
   std::atomic<std::size_t> done{0};
   std::vector<std::optional<std::vector<BoundingBox>>> fill(n);
   std::vector<std::vector<BoundingBox>> columns(n);  // the finer cover before the tiling (fill_face_columns())
   parallel_for(0, n, [&](std::size_t i) {
+    if (hit[i]) {
+      const Entry& e = *entry[i];
+      r.failures[i] = e.failure;
+      if (e.filled) {
+        fill[i] = e.fill;
+        columns[i] = e.columns;
+        blocks[i].mesh = e.milled;
+        r.filled[i] = 1;
+      }
+      if (progress) progress->update(++done, 2 * n);
+      return;
+    }
     const Vec3 d = axis_direction(blocks[i].axis);
     try {
       MilledShape m = milled_shape(blocks[i].mesh, d);
@@ -79,8 +181,22 @@ MillToleranceResult mill_within_tolerance(const Mesh& solid, std::vector<Block> 
     } catch (const std::exception& e) {
       r.failures[i] = std::string("its milled shape could not be computed: ") + e.what();
     }
+    if (entry[i]) {  // a new cache entry: what this step made of the block
+      Entry& e = *entry[i];
+      e.complete = true;
+      e.failure = r.failures[i];
+      e.filled = r.filled[i];
+      if (r.filled[i]) {
+        e.milled = blocks[i].mesh;
+        e.fill = fill[i];
+        e.columns = columns[i];
+      }
+    }
     if (progress) progress->update(++done, 2 * n);
   });
+  if (progress && options.cache)
+    progress->info(std::to_string(num_hits) + " of " + std::to_string(n) +
+                   " block(s) milled before, unchanged: their milled shapes reused");
 
   // 2. collisions of the filled blocks with every other block
   std::vector<BoundingBox> boxes(n);
@@ -173,6 +289,7 @@ MillToleranceResult mill_within_tolerance(const Mesh& solid, std::vector<Block> 
   for (std::size_t p = 0; p < pairs.size(); ++p) {
     if (!collides[p]) continue;
     const auto [i, j] = pairs[p];
+    r.collided[i] = r.collided[j] = 1;
     for (const auto& [a, b] : {std::pair{i, j}, std::pair{j, i}})
       if (r.filled[a] && r.failures[a].empty())
         r.failures[a] = "its milled shape overlaps block " + std::to_string(b + 1);
@@ -254,12 +371,20 @@ MillToleranceResult mill_within_tolerance(const Mesh& solid, std::vector<Block> 
     // block's faces near them (the box around them, widened by a margin so
     // that no plane of it is a face's).
     parallel_for(0, ids.size(), [&](std::size_t k) {
+      if (entry[ids[k]] && entry[ids[k]]->outside_known) {
+        parts[k] = entry[ids[k]]->outside;
+        return;
+      }
       std::optional<BoundingBox> within;
       if (fill[ids[k]] && !fill[ids[k]]->empty()) within = detail::fill_hull(*fill[ids[k]], boxes[ids[k]]);
       try {
         parts[k] = detail::outside_part(blocks[ids[k]].mesh, solid, within ? &*within : nullptr);
       } catch (const std::exception&) {
         // no part: measured in regions
+      }
+      if (entry[ids[k]]) {  // one task per block: its entry is this task's alone
+        entry[ids[k]]->outside = parts[k];
+        entry[ids[k]]->outside_known = true;
       }
     });
     std::vector<FillPart> view(all_filled.size());

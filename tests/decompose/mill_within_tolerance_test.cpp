@@ -173,6 +173,7 @@ TEST(MillWithinTolerance, ABlockTheFillCannotReachIsNoCollisionEvenWithAZeroArea
   EXPECT_EQ(r.filled[1], 0);
   EXPECT_TRUE(r.failures[0].empty()) << r.failures[0];
   EXPECT_TRUE(r.failures[1].empty()) << r.failures[1];
+  EXPECT_EQ(r.collided, (std::vector<char>{0, 0}));
   EXPECT_GE(r.deviation[0], 1.0 - 1e-9);  // the groove filled: 1 deep
 }
 
@@ -275,7 +276,52 @@ TEST(MillWithinTolerance, AFillReachingAnotherBlockIsACollision) {
   EXPECT_EQ(r.filled[1], 0);
   EXPECT_EQ(r.failures[0], "its milled shape overlaps block 2");
   EXPECT_TRUE(r.failures[1].empty()) << r.failures[1];
+  // both of the pair are marked (the rounds then grow the boxes next to each
+  // other afresh, decompose.cpp); the exact post passes all the same
+  EXPECT_EQ(r.collided, (std::vector<char>{1, 1}));
   EXPECT_NEAR(detail::exact_blocks_overlap(r.blocks[0].mesh, b), 10.0, 1e-9);  // [7,8] x [4,6] x [0,5]
+}
+
+}  // namespace
+}  // namespace subfab
+
+namespace subfab {
+namespace {
+
+// A block milled before on the same solid (the rounds within a tolerance
+// carve many again unchanged) is taken from the cache: the same milled shape,
+// fill and measure as without it; a call on another solid empties the cache.
+TEST(MillWithinTolerance, ABlockMilledBeforeOnTheSameSolidIsReusedWithTheSameResult) {
+  const Mesh box = voxel_mesh(grooved_box_cells());
+  MillToleranceOptions o;
+  o.tolerance = 1.5;
+  const MillToleranceResult plain = mill_within_tolerance(box, whole_box(box), o);
+  ASSERT_EQ(plain.filled.at(0), 1);
+  MillCache cache;
+  o.cache = &cache;
+  const MillToleranceResult first = mill_within_tolerance(box, whole_box(box), o);
+  EXPECT_EQ(cache.hits(), 0u);
+  EXPECT_EQ(cache.size(), 1u);
+  const MillToleranceResult again = mill_within_tolerance(box, whole_box(box), o);
+  EXPECT_EQ(cache.hits(), 1u);
+  EXPECT_EQ(cache.size(), 1u);
+  for (const MillToleranceResult* r : {&first, &again}) {
+    EXPECT_EQ(r->filled, plain.filled);
+    EXPECT_EQ(r->failures, plain.failures);
+    EXPECT_EQ(r->deviation, plain.deviation);
+    EXPECT_EQ(r->blocks.at(0).mesh.vertices, plain.blocks.at(0).mesh.vertices);
+    EXPECT_EQ(r->blocks.at(0).mesh.faces, plain.blocks.at(0).mesh.faces);
+  }
+  // the block on its own as the solid: another solid, nothing reused
+  const Mesh moved = [&] {
+    Mesh m = box;
+    for (Vec3& v : m.vertices) v += Vec3(0.5, 0, 0);
+    return m;
+  }();
+  const MillToleranceResult other = mill_within_tolerance(moved, whole_box(moved), o);
+  EXPECT_EQ(cache.hits(), 1u);
+  EXPECT_EQ(cache.size(), 1u);
+  EXPECT_EQ(other.filled.at(0), 1);
 }
 
 }  // namespace
