@@ -18,8 +18,10 @@
 //!   3. the remaining rows x boxes go to CBC: min sum_i c_i x_i,
 //!      sum_{i covers r} x_i >= 1 for every row r, x binary, with c_i = the
 //!      box's cost (1 by default)
-//!      (plus, optionally, a tie-break smaller than 1 in total that prefers
-//!      boxes with a larger `preference`), a time limit keeping the best
+//!      (plus, optionally, a tie-break smaller than 1/2 in total that prefers
+//!      boxes with a larger `preference`; CBC then stops once its best cover
+//!      is within 1/2 of its bound: the total cost is proven minimal, the
+//!      tie-break among covers of that cost is not), a time limit keeping the best
 //!      solution found, a fixed random seed and one thread (deterministic
 //!      when the time limit is not hit);
 //!   4. boxes of the solution made redundant by the others are removed
