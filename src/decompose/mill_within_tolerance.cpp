@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <unordered_map>
 #include <utility>
 
@@ -34,16 +35,13 @@ std::string format_length(double v) {
   return buf;
 }
 
-//! FNV-1a over raw bytes, continued from `h`.
-std::uint64_t hash_bytes(const void* data, std::size_t size, std::uint64_t h = 1469598103934665603ull) {
-  const auto* p = static_cast<const unsigned char*>(data);
-  for (std::size_t i = 0; i < size; ++i) h = (h ^ p[i]) * 1099511628211ull;
-  return h;
-}
-
-std::uint64_t hash_mesh(const Mesh& m, std::uint64_t h = 1469598103934665603ull) {
-  h = hash_bytes(m.vertices.data(), m.vertices.size() * sizeof(Vec3), h);
-  return hash_bytes(m.faces.data(), m.faces.size() * sizeof(Triangle), h);
+//! A hash of the mesh's bytes (vertices, then faces), combined with `seed`.
+std::uint64_t hash_mesh(const Mesh& m, std::uint64_t seed = 0) {
+  const auto bytes = [](const auto& v) {
+    return std::hash<std::string_view>{}(
+        std::string_view(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(v.front())));
+  };
+  return (seed * 1099511628211ull ^ bytes(m.vertices)) * 1099511628211ull ^ bytes(m.faces);
 }
 
 bool same_bytes(const Mesh& a, const Mesh& b) {
@@ -74,8 +72,7 @@ struct MillCache::Impl {
   std::size_t hits = 0;
 
   static std::uint64_t key(const Mesh& block, Axis axis) {
-    const int a = static_cast<int>(axis);
-    return hash_mesh(block, hash_bytes(&a, sizeof a));
+    return hash_mesh(block, static_cast<std::uint64_t>(axis) + 1);
   }
   //! Binds the cache to `solid`, emptying it when it held another.
   void bind(const Mesh& solid) {
@@ -382,11 +379,12 @@ MillToleranceResult mill_within_tolerance(const Mesh& solid, std::vector<Block> 
       } catch (const std::exception&) {
         // no part: measured in regions
       }
-      if (entry[ids[k]]) {  // one task per block: its entry is this task's alone
+    });
+    for (std::size_t k = 0; k < ids.size(); ++k)
+      if (entry[ids[k]] && !entry[ids[k]]->outside_known) {
         entry[ids[k]]->outside = parts[k];
         entry[ids[k]]->outside_known = true;
       }
-    });
     std::vector<FillPart> view(all_filled.size());
     for (std::size_t k = 0; k < ids.size(); ++k)
       if (parts[k]) view[slot[ids[k]]] = {parts[k]->faces(), &parts[k]->on_input};
