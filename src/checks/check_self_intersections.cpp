@@ -7,9 +7,11 @@
 #include <algorithm>
 #include <cstdint>
 #include <sstream>
+#include <string>
 #include <utility>
 
 #include "checks/edge_topology.h"
+#include "subfab/core/error.h"
 #include "subfab/core/parallel.h"
 
 namespace subfab {
@@ -90,7 +92,52 @@ bool faces_intersect(const Mesh& mesh, std::size_t f, std::size_t g) {
   return CGAL::do_intersect(ts, tt);
 }
 
+//! True when face f is tested at all: no repeated index, corners not collinear
+//! (degenerate faces are check_degenerate_faces()'s).
+bool is_tested(const Mesh& mesh, std::size_t f) {
+  const Triangle& t = mesh.faces[f];
+  return !has_repeated_index(t) && !CGAL::collinear(point(mesh, t[0]), point(mesh, t[1]), point(mesh, t[2]));
+}
+
+CGAL::Bbox_3 face_bbox(const Mesh& mesh, std::size_t f) {
+  const Triangle& t = mesh.faces[f];
+  return point(mesh, t[0]).bbox() + point(mesh, t[1]).bbox() + point(mesh, t[2]).bbox();
+}
+
 }  // namespace
+
+std::size_t count_self_intersections_of(const Mesh& mesh, const std::vector<int>& faces) {
+  require_valid_indices(mesh, "self_intersections");
+  require_finite_coordinates(mesh, "self_intersections");
+  std::vector<std::size_t> own;  // the tested faces among `faces`
+  std::vector<CGAL::Bbox_3> own_box;
+  std::vector<char> in_set(mesh.num_faces(), 0);
+  for (const int f : faces) {
+    if (f < 0 || static_cast<std::size_t>(f) >= mesh.num_faces())
+      throw InvalidArgumentError("count_self_intersections_of: face id " + std::to_string(f) + " out of range");
+    const auto fs = static_cast<std::size_t>(f);
+    in_set[fs] = 1;
+    if (!is_tested(mesh, fs)) continue;
+    own.push_back(fs);
+    own_box.push_back(face_bbox(mesh, fs));
+  }
+  std::size_t count = 0;
+  for (std::size_t g = 0; g < mesh.num_faces(); ++g) {
+    const CGAL::Bbox_3 gb = face_bbox(mesh, g);
+    bool tested = false, known = false;
+    for (std::size_t i = 0; i < own.size(); ++i) {
+      const std::size_t f = own[i];
+      if (g == f || (in_set[g] && g < f)) continue;  // each pair once (and f, g both in the set: from the smaller)
+      if (!CGAL::do_overlap(gb, own_box[i])) continue;
+      if (!known) {
+        tested = is_tested(mesh, g);
+        known = true;
+      }
+      if (tested && faces_intersect(mesh, std::min(f, g), std::max(f, g))) ++count;
+    }
+  }
+  return count;
+}
 
 CheckResult check_self_intersections(const Mesh& mesh, const CheckOptions& options) {
   require_valid_indices(mesh, "self_intersections");

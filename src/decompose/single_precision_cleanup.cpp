@@ -77,8 +77,6 @@ void collapse(Mesh& machine, Mesh& block, SinglePrecisionCleanup& r) {
   remove_unreferenced_vertices(machine);
 }
 
-std::size_t num_crossing(const Mesh& m) { return check_self_intersections(m, {.max_examples = 64}).num_offending; }
-
 //! Collapses the edges of `machine` shorter than `length`, shortest first
 //! (ties by vertex ids), each onto its lower-id end, when the collapse keeps
 //! a closed 2-manifold: the two ends share exactly the two vertices opposite
@@ -395,9 +393,19 @@ void round_and_repair(Mesh& machine, Mesh& block, SinglePrecisionCleanup& r) {
     std::set<int> vertices;
     for (int f : crossing.examples)
       for (int v : machine.faces[static_cast<std::size_t>(f)]) vertices.insert(v);
-    std::size_t best = crossing.num_offending;
+    // Moving v changes only the pairs that hold a face around v: each
+    // candidate's count is the others' (fixed while v moves) plus those.
+    std::vector<std::vector<int>> around(machine.num_vertices());
+    for (std::size_t f = 0; f < machine.num_faces(); ++f)
+      for (const int w : machine.faces[f])
+        if (vertices.count(w) && (around[static_cast<std::size_t>(w)].empty() ||
+                                  around[static_cast<std::size_t>(w)].back() != static_cast<int>(f)))
+          around[static_cast<std::size_t>(w)].push_back(static_cast<int>(f));
+    std::size_t best = crossing.num_offending;  // the count now (with the kept moves)
     for (int v : vertices) {
       const std::size_t vs = static_cast<std::size_t>(v);
+      const std::vector<int>& star = around[vs];
+      const std::size_t others = best - count_self_intersections_of(machine, star);
       const Vec3 rounded = machine.vertices[vs], other(other_float(exact[vs].x()), other_float(exact[vs].y()),
                                                        other_float(exact[vs].z()));
       Vec3 keep = rounded;
@@ -407,7 +415,7 @@ void round_and_repair(Mesh& machine, Mesh& block, SinglePrecisionCleanup& r) {
           if (mask & (1 << k)) candidate[k] = other[k];
         if (candidate == rounded) continue;
         machine.vertices[vs] = candidate;
-        const std::size_t count = num_crossing(machine);
+        const std::size_t count = others + count_self_intersections_of(machine, star);
         if (count < best) {
           best = count;
           keep = candidate;

@@ -57,7 +57,13 @@ using Fb = CGAL::Triangulation_face_base_with_info_2<int, K, CGAL::Constrained_t
 using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
 using Cdt = CGAL::Constrained_Delaunay_triangulation_2<K, Tds, CGAL::No_constraint_intersection_requiring_constructions_tag>;
 
-double round_exact(const FT& x) { return CGAL::to_double(CGAL::exact(x)); }
+//! x rounded to the nearest double; without the exact evaluation when x's
+//! interval is a single double (an input coordinate: the exact value is it).
+double round_exact(const FT& x) {
+  const CGAL::Interval_nt<false>& i = x.approx();
+  if (i.inf() == i.sup()) return i.inf();
+  return CGAL::to_double(CGAL::exact(x));
+}
 
 //! Marks the faces of `cdt` with their nesting level (number of constraints
 //! crossed from the infinite face): odd levels are inside the polygon.
@@ -140,8 +146,16 @@ class MilledBuilder {
     const std::uint64_t key = (static_cast<std::uint64_t>(f) << 32) | static_cast<std::uint32_t>(pid);
     auto it = height_cache_.find(key);
     if (it != height_cache_.end()) return it->second;
-    const Plane& p = *planes_[f];
     const Point2& q = points_[static_cast<std::size_t>(pid)];
+    // At a corner of the face's triangle the height is the corner's own z
+    // (exact, and a double: no exact evaluation later when it is compared
+    // or rounded). Most points of the diagram are such corners.
+    for (const K::Point_3& c : triangles_[static_cast<std::size_t>(faces_[f]->data())])
+      if (q.x() == c.x() && q.y() == c.y()) {
+        height_cache_.emplace(key, c.z());
+        return c.z();
+      }
+    const Plane& p = *planes_[f];
     FT h = -(p.a * q.x() + p.b * q.y() + p.d) / p.c;
     height_cache_.emplace(key, h);
     return h;

@@ -4,6 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
+
+#include "subfab/core/error.h"
 
 #include "support/test_shapes.h"
 #include "subfab/core/parallel.h"
@@ -62,6 +65,43 @@ TEST(CheckSelfIntersections, SameResultWithOneThread) {
   EXPECT_EQ(all.num_offending, one.num_offending);
   EXPECT_EQ(all.examples, one.examples);
   EXPECT_EQ(all.message, one.message);
+}
+
+TEST(CountSelfIntersectionsOf, CountsThePairsHoldingTheGivenFaces) {
+  // Two tori crossing: every crossing pair holds one face of each.
+  const Mesh a = test::torus(40, 20), b = test::torus(40, 20, 2.0, 0.5, Vec3(0.3, 0, 0));
+  const Mesh m = test::append(a, b);
+  const std::size_t all = check_self_intersections(m).num_offending;
+  ASSERT_GT(all, 0u);
+  std::vector<int> first(a.num_faces()), every(m.num_faces());
+  for (std::size_t f = 0; f < m.num_faces(); ++f) every[f] = static_cast<int>(f);
+  for (std::size_t f = 0; f < a.num_faces(); ++f) first[f] = static_cast<int>(f);
+  EXPECT_EQ(count_self_intersections_of(m, every), all);  // pairs inside the set counted once
+  EXPECT_EQ(count_self_intersections_of(m, first), all);
+  EXPECT_EQ(count_self_intersections_of(m, {}), 0u);
+  EXPECT_THROW(count_self_intersections_of(m, {static_cast<int>(m.num_faces())}), InvalidArgumentError);
+}
+
+TEST(CountSelfIntersectionsOf, AVertexMovedChangesTheCountOnlyThroughItsFaces) {
+  // What single_precision_cleanup relies on: the whole check's count minus the
+  // count of a vertex's faces does not depend on where that vertex is.
+  Mesh m = test::append(test::torus(40, 20), test::torus(40, 20, 2.0, 0.5, Vec3(0.3, 0, 0)));
+  std::size_t checked = 0;
+  for (int v = 0; v < static_cast<int>(m.num_vertices()); v += 37) {
+    std::vector<int> star;
+    for (std::size_t f = 0; f < m.num_faces(); ++f)
+      for (const int w : m.faces[f])
+        if (w == v) star.push_back(static_cast<int>(f));
+    const std::size_t before = check_self_intersections(m).num_offending;
+    const std::size_t others = before - count_self_intersections_of(m, star);
+    const Vec3 old = m.vertices[static_cast<std::size_t>(v)];
+    m.vertices[static_cast<std::size_t>(v)] = old * 1.15 + Vec3(0.05, -0.03, 0.1);
+    const std::size_t after = check_self_intersections(m).num_offending;
+    EXPECT_EQ(others + count_self_intersections_of(m, star), after) << "vertex " << v;
+    if (after != before) ++checked;
+    m.vertices[static_cast<std::size_t>(v)] = old;
+  }
+  EXPECT_GT(checked, 0u);  // some moves did change the count
 }
 
 }  // namespace

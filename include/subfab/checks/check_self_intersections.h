@@ -20,4 +20,13 @@ namespace subfab {
 //!        not finite (run those checks first).
 CheckResult check_self_intersections(const Mesh& mesh, const CheckOptions& options = {});
 
+//! The number of intersecting pairs, as check_self_intersections() counts
+//! them, that hold at least one of `faces` (ids into mesh.faces, each once):
+//! what moving vertices of those faces alone can change. Each of `faces` is
+//! tested against every face whose bounding box meets its own (a linear scan:
+//! for a few faces this is far cheaper than the whole check). Sequential.
+//! \throw InvalidMeshError as check_self_intersections(); InvalidArgumentError
+//!        when a face id is out of range.
+std::size_t count_self_intersections_of(const Mesh& mesh, const std::vector<int>& faces);
+
 }  // namespace subfab
