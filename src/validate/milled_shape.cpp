@@ -350,6 +350,29 @@ std::vector<char> stacked_triangles(const std::vector<std::array<Epick::Point_2,
   return stacked;
 }
 
+//! Does an end of one of `edges` (distinct segments, in doubles) lie inside
+//! another, or on it but off its ends? Exact. The edges of triangles whose
+//! projections overlap nothing cross nowhere (a crossing would overlap two
+//! interiors), so without such a touch they meet only at common ends: what
+//! insert_non_intersecting_curves() needs.
+bool touching_edges(const std::vector<std::array<Epick::Point_2, 2>>& edges) {
+  using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 2, std::size_t>;
+  std::vector<Box> boxes;
+  boxes.reserve(edges.size());
+  for (std::size_t i = 0; i < edges.size(); ++i) boxes.emplace_back(edges[i][0].bbox() + edges[i][1].bbox(), i);
+  const auto inside = [](const std::array<Epick::Point_2, 2>& e, const Epick::Point_2& p) {
+    return p != e[0] && p != e[1] && CGAL::collinear(e[0], e[1], p) &&
+           CGAL::collinear_are_strictly_ordered_along_line(e[0], p, e[1]);
+  };
+  bool touch = false;
+  CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const Box& x, const Box& y) {
+    if (touch) return;
+    const auto &a = edges[x.info()], &b = edges[y.info()];
+    touch = inside(a, b[0]) || inside(a, b[1]) || inside(b, a[0]) || inside(b, a[1]);
+  });
+  return touch;
+}
+
 //! Sets each face of `result` to the triangle on top of it: the diagram's
 //! (an upper envelope) or the map's (projections that overlap nothing).
 class TopOverlay : public CGAL::_Arr_default_overlay_traits_base<Diagram, Map, Map> {
@@ -373,6 +396,7 @@ Map top_surface(const std::vector<std::array<K::Point_3, 3>>& up,
   const std::vector<char> stacked = stacked_triangles(shadow);
   std::vector<Surface> surfaces;
   std::vector<Traits::X_monotone_curve_2> edges;
+  std::vector<std::array<Epick::Point_2, 2>> plain;  // the same edges, in doubles
   std::vector<std::pair<Point2, int>> centroids;
   std::set<std::pair<Point2, Point2>, bool (*)(const std::pair<Point2, Point2>&, const std::pair<Point2, Point2>&)>
       seen([](const std::pair<Point2, Point2>& x, const std::pair<Point2, Point2>& y) {
@@ -389,14 +413,20 @@ Map top_surface(const std::vector<std::array<K::Point_3, 3>>& up,
     for (std::size_t k = 0; k < 3; ++k) {
       Point2 a = p[k], b = p[(k + 1) % 3];
       if (CGAL::compare_xy(b, a) == CGAL::SMALLER) std::swap(a, b);
-      if (seen.emplace(a, b).second) edges.emplace_back(a, b);  // each edge once
+      if (seen.emplace(a, b).second) {  // each edge once
+        edges.emplace_back(a, b);
+        plain.push_back({shadow[i][k], shadow[i][(k + 1) % 3]});
+      }
     }
     centroids.emplace_back(CGAL::centroid(p[0], p[1], p[2]), static_cast<int>(i));
   }
   Diagram diagram;
   if (!surfaces.empty()) CGAL::upper_envelope_xy_monotone_3(surfaces.begin(), surfaces.end(), diagram);
   Map flat;
-  CGAL::insert(flat, edges.begin(), edges.end());
+  if (touching_edges(plain))
+    CGAL::insert(flat, edges.begin(), edges.end());
+  else  // the usual case: no sweep for intersections needed
+    CGAL::insert_non_intersecting_curves(flat, edges.begin(), edges.end());
   for (auto f = flat.faces_begin(); f != flat.faces_end(); ++f) f->set_data(-1);
   {
     CGAL::Arr_landmarks_point_location<Map> locator(flat);

@@ -108,6 +108,52 @@ TEST(MilledShape, FillsUnderAMushroomCapAndAnArmOverAStep) {
   EXPECT_DOUBLE_EQ(signed_volume(a.mesh), 32.0);  // block 24, gap 2 x 2 x 2 under the arm
 }
 
+//! `m` with the edge between the vertices at p and q split at its midpoint
+//! (both faces on it split in two): still closed and manifold.
+Mesh split_edge(Mesh m, const Vec3& p, const Vec3& q) {
+  const auto at = [&](const Vec3& x) {
+    return static_cast<int>(std::find(m.vertices.begin(), m.vertices.end(), x) - m.vertices.begin());
+  };
+  const int u = at(p), v = at(q), mid = static_cast<int>(m.vertices.size());
+  m.vertices.push_back((p + q) / 2.0);
+  std::vector<Triangle> faces;
+  for (const Triangle& t : m.faces) {
+    int k = 0;
+    while (k < 3 && !((t[k] == u && t[(k + 1) % 3] == v) || (t[k] == v && t[(k + 1) % 3] == u))) ++k;
+    if (k == 3) {
+      faces.push_back(t);
+      continue;
+    }
+    const int a = t[k], b = t[(k + 1) % 3], c = t[(k + 2) % 3];
+    faces.push_back({a, mid, c});
+    faces.push_back({mid, b, c});
+  }
+  m.faces = std::move(faces);
+  return m;
+}
+
+TEST(MilledShape, ATopEdgeTouchedInsideByAnotherTopFacesCorner) {
+  // A slab [0,4)x[0,2)x[0,1), a tower [0,2)x[0,2)x[1,3) on it and a shelf
+  // [-2,0)x[0,2)x[2,3) off the tower over empty space. The riser's foot at
+  // x = 2 is split at (2, 0.5, 1): seen from +z the slab top's new corner
+  // lies inside the tower top's edge (2,0)-(2,1) (the planar map's edges
+  // touch, not only at common ends). Milled: the slab, the tower and the
+  // shelf's column down to the base.
+  const Mesh plain = union_of_boxes({{{0, 0, 0}, {4, 2, 1}}, {{0, 0, 1}, {2, 2, 3}}, {{-2, 0, 2}, {0, 2, 3}}});
+  const Mesh touched = split_edge(plain, Vec3(2, 0, 1), Vec3(2, 1, 1));
+  ASSERT_EQ(touched.num_faces(), plain.num_faces() + 2);
+  ASSERT_TRUE(check_closed_solid(touched).ok());
+  for (const Mesh* m : {&plain, &touched}) {
+    const MilledShape s = milled_shape(*m, Vec3::UnitZ());
+    EXPECT_FALSE(s.is_block);
+    expect_milled_solid(s, Vec3::UnitZ());
+    EXPECT_DOUBLE_EQ(signed_volume(s.mesh), 28.0);  // 8 + 8 + the shelf's column 2 x 2 x 3
+    const BoundingBox bb = bounding_box(s.mesh);
+    EXPECT_EQ(bb.min, Vec3(-2, 0, 0));
+    EXPECT_EQ(bb.max, Vec3(4, 2, 3));
+  }
+}
+
 TEST(MilledShape, AnyAxisDirection) {
   // The shelf turned so that its top faces -x, +y, -z: the same milled volume.
   Eigen::Matrix3d to_neg_x, to_pos_y, to_neg_z;
