@@ -145,13 +145,8 @@ CheckResult check_self_intersections(const Mesh& mesh, const CheckOptions& optio
 
   std::vector<Box> boxes;
   boxes.reserve(mesh.num_faces());
-  for (std::size_t f = 0; f < mesh.num_faces(); ++f) {
-    const Triangle& t = mesh.faces[f];
-    if (has_repeated_index(t)) continue;
-    const Point a = point(mesh, t[0]), b = point(mesh, t[1]), c = point(mesh, t[2]);
-    if (CGAL::collinear(a, b, c)) continue;  // degenerate: reported by check_degenerate_faces
-    boxes.emplace_back(a.bbox() + b.bbox() + c.bbox(), &t);
-  }
+  for (std::size_t f = 0; f < mesh.num_faces(); ++f)
+    if (is_tested(mesh, f)) boxes.emplace_back(face_bbox(mesh, f), &mesh.faces[f]);
 
   std::vector<FacePair> intersecting;
   std::vector<FacePair> batch;
