@@ -51,7 +51,40 @@ BlockMatch match_block(const Mesh& exported, const Mesh& frame, const Eigen::Mat
   return r;
 }
 
+//! The volume of the faces of `m` grown by delta (Steiner's formula per
+//! triangle, summed), over the faces whose box grown by delta meets `near`
+//! (all faces when null).
+double grown_faces_volume(const Mesh& m, double delta, const BoundingBox* near) {
+  constexpr double pi = 3.141592653589793;
+  double sum = 0.0;
+  for (std::size_t f = 0; f < m.num_faces(); ++f) {
+    const Triangle& t = m.faces[f];
+    const Vec3& a = m.vertices[static_cast<std::size_t>(t[0])];
+    const Vec3& b = m.vertices[static_cast<std::size_t>(t[1])];
+    const Vec3& c = m.vertices[static_cast<std::size_t>(t[2])];
+    if (near) {
+      const Vec3 lo = a.cwiseMin(b).cwiseMin(c).array() - delta, hi = a.cwiseMax(b).cwiseMax(c).array() + delta;
+      if ((hi.array() < near->min.array()).any() || (lo.array() > near->max.array()).any()) continue;
+    }
+    const double area = 0.5 * (b - a).cross(c - a).norm();
+    const double perimeter = (b - a).norm() + (c - b).norm() + (a - c).norm();
+    sum += 2 * delta * area + 0.5 * pi * delta * delta * perimeter + 4.0 / 3.0 * pi * delta * delta * delta;
+  }
+  return sum;
+}
+
 }  // namespace
+
+double outside_volume_bound(double frame_volume, const Mesh& block, const Mesh& input, const FrameMatch& match) {
+  constexpr double eps = std::numeric_limits<double>::epsilon();
+  const double largest = std::max({largest_coordinate(block), largest_coordinate(input), largest_coordinate(match.input)});
+  const double delta = std::max(match.input_offset, match.block_offset) + match.computing_error + eps * largest;
+  const BoundingBox box = bounding_box(block);
+  const double grown = grown_faces_volume(block, delta, nullptr) + grown_faces_volume(input, delta, &box);
+  const double s = match.stretch;
+  // each sum of positive terms rounded within (number of terms) x eps, relative: 1e-9 covers a billion faces
+  return (s * s * s * std::max(frame_volume, 0.0) + grown) * (1.0 + 1e-9);
+}
 
 std::size_t FrameMatch::num_refused() const {
   return static_cast<std::size_t>(

@@ -10,6 +10,7 @@
 #include "geometry/rotate_accurately.h"
 #include "subfab/geometry/rotate_into_frame.h"
 #include "support/block_test_shapes.h"
+#include "validate/validate_booleans.h"
 
 namespace subfab {
 namespace {
@@ -97,6 +98,51 @@ TEST(MatchFrameBlocks, ARotationThatIsNotOneRefusesEveryBlock) {
   Eigen::Matrix3d mirror = Eigen::Matrix3d::Identity();
   mirror(2, 2) = -1;
   EXPECT_FALSE(match_frame_blocks(t.input, {&t.exported[0]}, {&t.frame[0]}, mirror).frame_error.empty());
+}
+
+// Check 4 in the frame: the volume of an exported block outside the input,
+// bounded from its frame block's. Known answers: the halves lie inside (0),
+// a top half raised by 0.25 sticks out by 0.25 (a unit square x 0.25); the
+// bound is never below the exact volume of the exported block outside the
+// input and exceeds it by the rounding's share only.
+TEST(OutsideVolumeBound, BoundsTheExportedBlocksVolumeOutsideFromItsFrameBlocks) {
+  TurnedHalves t = turned_halves();
+  const Mesh frame_input = rotate_into_frame(t.input, t.rotation, kFrameSnapTolerance);
+  const BoundingBox fb = bounding_box(frame_input);
+  t.frame[1] = test::box_solid({fb.min.x(), fb.min.y(), 0.5 * (fb.min.z() + fb.max.z())},
+                               {fb.max.x(), fb.max.y(), fb.max.z() + 0.25});
+  t.exported[1] = turned(t.frame[1], t.rotation.transpose());
+  const FrameMatch m = match(t);
+  ASSERT_EQ(m.num_refused(), 0u) << m.refused[0] << m.refused[1];
+  for (std::size_t i = 0; i < 2; ++i) {
+    const double in_frame = detail::exact_volume_outside(t.frame[i], m.input);
+    const double bound = outside_volume_bound(in_frame, t.exported[i], t.input, m);
+    const double exact = detail::exact_volume_outside(t.exported[i], t.input);
+    EXPECT_GE(bound, exact) << i;
+    EXPECT_LE(bound, exact + 1e-8) << i;  // offsets ~1e-9 (the input's snapping) x areas ~6
+    EXPECT_NEAR(exact, i == 0 ? 0.0 : 0.25, 1e-8) << i;
+  }
+}
+
+// An exported block lying off its frame block by up to the offset allowed
+// (here 4e-7, its top pushed out of the input): the frame block is inside,
+// the bound still covers what the exported block has outside.
+TEST(OutsideVolumeBound, HoldsWhenTheExportedBlockLiesOffItsFrameBlock) {
+  TurnedHalves t = turned_halves();
+  const Vec3 up = t.rotation.transpose() * Vec3::UnitZ();
+  Mesh& top = t.exported[1];
+  const BoundingBox fb = bounding_box(t.frame[1]);
+  for (std::size_t v = 0; v < top.num_vertices(); ++v)
+    if (t.frame[1].vertices[v].z() == fb.max.z()) top.vertices[v] += 4e-7 * up;
+  const FrameMatch m = match(t);
+  ASSERT_EQ(m.num_refused(), 0u) << m.refused[1];
+  EXPECT_GE(m.block_offset, 4e-7 * (1 - 1e-9));
+  const double exact = detail::exact_volume_outside(top, t.input);
+  EXPECT_GT(exact, 3e-7);  // the unit top face raised by ~4e-7
+  EXPECT_EQ(detail::exact_volume_outside(t.frame[1], m.input), 0.0);
+  const double bound = outside_volume_bound(0.0, top, t.input, m);
+  EXPECT_GE(bound, exact);
+  EXPECT_LT(bound, 1e-5);
 }
 
 }  // namespace

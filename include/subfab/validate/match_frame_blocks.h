@@ -77,4 +77,28 @@ FrameMatch match_frame_blocks(const Mesh& input, const std::vector<const Mesh*>&
                               const std::vector<const Mesh*>& frame_blocks, const Eigen::Matrix3d& rotation,
                               const FrameMatchOptions& options = {});
 
+//! Check 4 in decompose's frame: a bound on vol(E \\ S), the volume of the
+//! exported block E outside the input S, from vol(F \\ S_f), measured
+//! exactly on its frame block F against the input in the frame S_f (they
+//! share their faces there, so the exact difference is cheaper: fertility
+//! at 1e-3, 1.8 times). With E' = R^T F and S' = R^T S_f (the exact images),
+//! E \\ S lies in (E' \\ S') ∪ (E △ E') ∪ (E ∩ (S' \\ S)), and
+//! vol(E' \\ S') = |det R^T| vol(F \\ S_f) <= stretch^3 vol(F \\ S_f). E and
+//! E' have the same faces, each vertex within delta = max(input_offset,
+//! block_offset) + computing_error: a point of E △ E' has different winding
+//! numbers in the two, so the moving surface (every vertex moved linearly)
+//! passes through it, and each moving face stays within delta of its face
+//! in E: E △ E' lies in the union of the faces of E grown by delta, of volume
+//! at most 2 delta A + pi/2 delta^2 P + 4/3 pi delta^3 per face (Steiner's
+//! formula for a triangle of area A and perimeter P). Likewise S' \\ S for
+//! the faces of S that come within delta of E's bounding box. delta also
+//! takes the rounding of the difference's vertices to doubles (half an ulp
+//! of the largest coordinate), which moves the measured volume by at most
+//! the same sums.
+//! \param frame_volume vol(F \\ S_f), outside_part() on match.input
+//! \param block        E, the exported block (its frame block matched: match.refused empty for it)
+//! \param input        S, the input as given to match_frame_blocks()
+//! \return >= vol(E \\ S) (model units^3)
+double outside_volume_bound(double frame_volume, const Mesh& block, const Mesh& input, const FrameMatch& match);
+
 }  // namespace subfab
