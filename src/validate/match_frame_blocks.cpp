@@ -73,17 +73,36 @@ double grown_faces_volume(const Mesh& m, double delta, const BoundingBox* near) 
   return sum;
 }
 
+//! The offset every vertex lies within of R^T x its frame twin, with the
+//! rounding of a boolean's output vertices (half an ulp of `largest`).
+double frame_delta(const FrameMatch& match, double largest) {
+  constexpr double eps = std::numeric_limits<double>::epsilon();
+  return std::max(match.input_offset, match.block_offset) + match.computing_error + eps * largest;
+}
+
+//! stretch^3 x frame_volume + grown, rounded up: each sum of positive terms
+//! is within (number of terms) x eps of its value, relative (1e-9 covers a
+//! billion faces).
+double transferred(double frame_volume, double grown, const FrameMatch& match) {
+  const double s = match.stretch;
+  return (s * s * s * std::max(frame_volume, 0.0) + grown) * (1.0 + 1e-9);
+}
+
 }  // namespace
 
 double outside_volume_bound(double frame_volume, const Mesh& block, const Mesh& input, const FrameMatch& match) {
-  constexpr double eps = std::numeric_limits<double>::epsilon();
   const double largest = std::max({largest_coordinate(block), largest_coordinate(input), largest_coordinate(match.input)});
-  const double delta = std::max(match.input_offset, match.block_offset) + match.computing_error + eps * largest;
+  const double delta = frame_delta(match, largest);
   const BoundingBox box = bounding_box(block);
-  const double grown = grown_faces_volume(block, delta, nullptr) + grown_faces_volume(input, delta, &box);
-  const double s = match.stretch;
-  // each sum of positive terms rounded within (number of terms) x eps, relative: 1e-9 covers a billion faces
-  return (s * s * s * std::max(frame_volume, 0.0) + grown) * (1.0 + 1e-9);
+  return transferred(frame_volume, grown_faces_volume(block, delta, nullptr) + grown_faces_volume(input, delta, &box),
+                     match);
+}
+
+double overlap_volume_bound(double frame_volume, const Mesh& a, const Mesh& b, const FrameMatch& match) {
+  const double largest = std::max({largest_coordinate(a), largest_coordinate(b), largest_coordinate(match.input)});
+  const double delta = frame_delta(match, largest);
+  const BoundingBox box_a = bounding_box(a), box_b = bounding_box(b);
+  return transferred(frame_volume, grown_faces_volume(a, delta, &box_b) + grown_faces_volume(b, delta, &box_a), match);
 }
 
 std::size_t FrameMatch::num_refused() const {

@@ -145,5 +145,25 @@ TEST(OutsideVolumeBound, HoldsWhenTheExportedBlockLiesOffItsFrameBlock) {
   EXPECT_LT(bound, 1e-5);
 }
 
+// Check 3 in the frame: the overlap of two exported blocks bounded from
+// their frame blocks'. The halves only touch (0); the top half lowered by
+// 0.1 into the bottom one overlaps it by 0.1 (a unit square x 0.1). The
+// bound is never below the exact overlap of the exported blocks.
+TEST(OverlapVolumeBound, BoundsTheExportedBlocksOverlapFromTheirFrameBlocks) {
+  for (const double down : {0.0, 0.1}) {
+    TurnedHalves t = turned_halves();
+    for (Vec3& v : t.frame[1].vertices) v.z() -= down;
+    t.exported[1] = turned(t.frame[1], t.rotation.transpose());
+    const FrameMatch m = match(t);
+    ASSERT_EQ(m.num_refused(), 0u) << m.refused[0] << m.refused[1];
+    const double in_frame = detail::exact_blocks_overlap(t.frame[0], t.frame[1]);
+    const double bound = overlap_volume_bound(in_frame, t.exported[0], t.exported[1], m);
+    const double exact = detail::exact_blocks_overlap(t.exported[0], t.exported[1]);
+    EXPECT_NEAR(exact, down, 1e-12) << down;
+    EXPECT_GE(bound, exact) << down;
+    EXPECT_LE(bound, exact * (1 + 1e-8) + 1e-8) << down;  // the offsets x areas ~6, the rounding up
+  }
+}
+
 }  // namespace
 }  // namespace subfab

@@ -101,4 +101,13 @@ FrameMatch match_frame_blocks(const Mesh& input, const std::vector<const Mesh*>&
 //! \return >= vol(E \\ S) (model units^3)
 double outside_volume_bound(double frame_volume, const Mesh& block, const Mesh& input, const FrameMatch& match);
 
+//! Check 3 in decompose's frame: a bound on vol(A ∩ B) of two exported
+//! blocks from vol(F_A ∩ F_B) of their frame blocks, as
+//! outside_volume_bound(): A ∩ B lies in (A' ∩ B') ∪ (A △ A') ∪ (B △ B'),
+//! the first of volume <= stretch^3 vol(F_A ∩ F_B), the others held by the
+//! faces of A near B's box, and of B near A's, grown by delta.
+//! \param frame_volume vol(F_A ∩ F_B), blocks_overlap() of the frame blocks
+//! \return >= vol(A ∩ B) (model units^3)
+double overlap_volume_bound(double frame_volume, const Mesh& a, const Mesh& b, const FrameMatch& match);
+
 }  // namespace subfab
