@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //! \file match_frame_blocks.h
-//! Check 10 in decompose's working frame (issue 17; docs/validate.md).
+//! Checks 3, 4 and 10 in decompose's working frame (issue 17; docs/validate.md):
+//! the distances of check 10 and the volumes of checks 3 and 4 (below the
+//! file comment's argument, outside_volume_bound() and overlap_volume_bound()).
 //!
 //! decompose() works in a frame turned from the input's (thesis 4.3.1:
 //! canonical = R x input, rotate_into_frame()), where neighbouring blocks

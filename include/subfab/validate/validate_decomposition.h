@@ -185,11 +185,13 @@ struct ValidationOptions {
                                       // made (input ∪ blocks) against the input: symmetric Hausdorff
                                       // distance between the surfaces (FillDeviationMeter) <= it
   double tolerance_error = 0.02;      // check 10: error bound of the distances, fraction of the tolerance
-  std::optional<Eigen::Matrix3d> frame_rotation;  // check 10: decompose's frame (decomposition.json "rotation",
-                                      // canonical = rotation x input). Set, and every block with its frame_mesh:
-                                      // check 10 measures the frame blocks against the input turned as decompose
-                                      // turned it, the rounding back to the exported blocks added to the bound
-                                      // (match_frame_blocks.h; refused frame blocks fail the check). Unset, or a
+  std::optional<Eigen::Matrix3d> frame_rotation;  // checks 3, 4, 10: decompose's frame (decomposition.json
+                                      // "rotation", canonical = rotation x input). Set, with a tolerance, and every
+                                      // block with its frame_mesh: check 10 measures the frame blocks against the
+                                      // input turned as decompose turned it, the rounding back to the exported
+                                      // blocks added to the bound, and checks 3 and 4 run their exact booleans on
+                                      // the frame blocks, their volumes bounded back the same way
+                                      // (match_frame_blocks.h; refused frame blocks fail check 10). Unset, or a
                                       // block without one (folders written before the frame blocks): the exported
                                       // blocks against the input (slow on turned models)
   double frame_snap_tolerance = 1e-9;  // rotate_into_frame()'s snapping (decomposition.json "frame"."snap_tolerance")
