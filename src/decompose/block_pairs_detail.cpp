@@ -111,10 +111,27 @@ std::optional<Mesh> exact_block_union(const std::vector<const Mesh*>& meshes,
   const std::string error = run_in_arena([&] {
     ExactMesh u = to_exact(*meshes[0]);
     const auto np = CGAL::parameters::throw_on_self_intersection(true);
-    for (std::size_t k = 1; k < meshes.size(); ++k) {
-      ExactMesh e = to_exact(*meshes[k]), r;
-      if (!PMP::corefine_and_compute_union(u, e, r, np, np)) return;
-      u = std::move(r);
+    // The others joined in order, except that a union touching itself at a
+    // point (two vertices at one exact point: CGAL splits the pinch) is
+    // never given to the corefinement again: CGAL 5.5 can loop for ever on
+    // one (decimated_knight.off at the default: a sliver with two
+    // neighbours, the first union pinched, the second never returned). Such
+    // a union waits, and the next mesh is tried first; the union is given up
+    // when every mesh left pinches it (unless it is the last step: the
+    // connected-components test below then refuses a pinched result).
+    std::vector<std::size_t> left;
+    for (std::size_t k = 1; k < meshes.size(); ++k) left.push_back(k);
+    while (!left.empty()) {
+      bool joined = false;
+      for (std::size_t i = 0; i < left.size() && !joined; ++i) {
+        ExactMesh a = u, e = to_exact(*meshes[left[i]]), r;
+        if (!PMP::corefine_and_compute_union(a, e, r, np, np)) continue;
+        if (left.size() > 1 && has_coincident_vertices(r)) continue;
+        u = std::move(r);
+        left.erase(left.begin() + static_cast<std::ptrdiff_t>(i));
+        joined = true;
+      }
+      if (!joined) return;
     }
     if (u.number_of_faces() > 0) {
       auto fcc = u.add_property_map<ExactMesh::Face_index, std::size_t>("f:cc", 0).first;
