@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "decompose/block_pairs_detail.h"
 
+#include <CGAL/boost/graph/helpers.h>
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
 
@@ -117,10 +118,12 @@ std::optional<Mesh> exact_block_union(const std::vector<const Mesh*>& meshes,
     // one (remove_slivers.cpp, union_surface.cpp). Such a union waits, and
     // the next mesh is tried first; the union is given up when every mesh
     // left pinches it (unless it is the last step: the connected-components
-    // test below then refuses a pinched result). (This does not cure
-    // decimated_knight.off at the default: there the second union of sliver
-    // 11 with two neighbours never returns without a pinch, inside CGAL's
-    // constrained triangulation; not understood yet.)
+    // test below then refuses a pinched result). Likewise a union CGAL
+    // outputs as an invalid polygon mesh (decimated_knight.off at the
+    // default: sliver 11 united with one neighbour gave one, and the union
+    // with the second never returned, in CGAL's constrained triangulation;
+    // a build with CGAL's preconditions stops there on is_valid_polygon_mesh).
+    // Where every order gives one, the group is refused.
     std::vector<std::size_t> left;
     for (std::size_t k = 1; k < meshes.size(); ++k) left.push_back(k);
     while (!left.empty()) {
@@ -128,14 +131,14 @@ std::optional<Mesh> exact_block_union(const std::vector<const Mesh*>& meshes,
       for (std::size_t i = 0; i < left.size() && !joined; ++i) {
         ExactMesh a = u, e = to_exact(*meshes[left[i]]), r;
         if (!PMP::corefine_and_compute_union(a, e, r, np, np)) continue;
-        if (left.size() > 1 && has_coincident_vertices(r)) continue;
+        if (left.size() > 1 && (has_coincident_vertices(r) || !CGAL::is_valid_polygon_mesh(r))) continue;
         u = std::move(r);
         left.erase(left.begin() + static_cast<std::ptrdiff_t>(i));
         joined = true;
       }
       if (!joined) return;
     }
-    if (u.number_of_faces() > 0) {
+    if (u.number_of_faces() > 0 && CGAL::is_valid_polygon_mesh(u)) {
       auto fcc = u.add_property_map<ExactMesh::Face_index, std::size_t>("f:cc", 0).first;
       if ((!accept || accept(u)) && PMP::connected_components(u, fcc) == 1) {
         SuspendArena heap;

@@ -36,6 +36,27 @@ TEST(ExactBlockUnion, APinchedUnionWaitsForTheMeshThatBridgesIt) {
   EXPECT_FALSE(detail::exact_block_union({&a, &b, &far}, nullptr, rounding).has_value());
 }
 
+// Regression (decimated_knight.off at the default never finished): a
+// sliver and two neighbours as the sliver stage unites them; the first
+// union CGAL gives is no valid polygon mesh and the union with the third
+// never returned. The invalid union waits; the other order ends in an
+// invalid union too, so the group is refused (nullopt), and it returns.
+TEST(ExactBlockUnion, AnInvalidUnionIsNeverUnitedFurther) {
+  std::vector<Mesh> group;
+  for (int k = 0; k < 3; ++k)
+    group.push_back(read_mesh(test::data_path("regression/knight_sliver_group_" + std::to_string(k) + ".obj")));
+  double sum = 0.0;
+  for (const Mesh& m : group) sum += signed_volume(m);
+  detail::RoundingReport rounding;
+  const std::optional<Mesh> u = detail::exact_block_union({&group[0], &group[1], &group[2]}, nullptr, rounding);
+  EXPECT_FALSE(u.has_value());
+  // the pair that CGAL unites validly still unites: the guard refuses only invalid unions
+  const std::optional<Mesh> pair = detail::exact_block_union({&group[0], &group[2]}, nullptr, rounding);
+  ASSERT_TRUE(pair.has_value());
+  EXPECT_TRUE(check_closed_solid(*pair).ok());
+  EXPECT_NEAR(signed_volume(*pair), signed_volume(group[0]) + signed_volume(group[2]), 1e-9 * sum);
+}
+
 TEST(MergeBlocks, SideBySideOnOneBaseMerge) {
   const MergeResult r = merge_blocks({make_block(box_solid({0, 0, 0}, {1, 1, 1}), Axis::PosZ, 0),
                                       make_block(box_solid({1, 0, 0}, {2, 1, 1}), Axis::PosZ, 1)});
