@@ -17,10 +17,10 @@ using test::box_solid;
 
 Block make_block(const Mesh& m, Axis axis, int source) { return Block{m, axis, source}; }
 
-// Regression (decimated_knight.off at the default: the sliver stage's union
-// of a sliver with two neighbours never returned): two unit cubes touching
-// at one corner make a union that touches itself at a point, on which CGAL
-// 5.5's corefinement can loop for ever. The union of several blocks joins
+// The sliver stage's union of a sliver with two neighbours (step 9c): two
+// unit cubes touching at one corner make a union that touches itself at a
+// point, on which CGAL 5.5's corefinement can loop for ever (the hazard
+// remove_slivers.cpp and union_surface.cpp already avoid). The union of several blocks joins
 // the bridging cube first instead: one solid, volume 3 - 2 x 0.125.
 // Without a bridge no order joins them: nullopt, and no pinched union is
 // given to the corefinement.
